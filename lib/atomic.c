@@ -1,0 +1,134 @@
+/* atomic.c — whole-or-nothing output files (see atomic.h). */
+#define _GNU_SOURCE
+#include "atomic.h"
+
+#include <errno.h>
+#include <fcntl.h>
+#include <libgen.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+static void
+dirof(const char *path, char *dir, size_t n)
+{
+	char buf[4096];
+
+	snprintf(buf, sizeof buf, "%s", path);
+	snprintf(dir, n, "%s", dirname(buf));
+}
+
+int
+pm_out_open(pm_out *o, const char *path, pm_error *err)
+{
+	char dir[4096], base[4096];
+	mode_t um;
+	int fd;
+
+	memset(o, 0, sizeof *o);
+	o->fd = -1;
+	if (strcmp(path, "-") == 0) {
+		o->f = stdout;
+		o->fd = 1;
+		o->is_stdout = 1;
+		snprintf(o->path, sizeof o->path, "stdout");
+		return 0;
+	}
+	if (strlen(path) >= sizeof o->path - 32)
+		return pm_seterr(err, "'%s': path too long", path);
+	snprintf(o->path, sizeof o->path, "%s", path);
+	dirof(path, dir, sizeof dir);
+	fd = open(dir, O_TMPFILE | O_WRONLY | O_CLOEXEC, 0666);
+	if (fd >= 0) {
+		o->tmpfile_kind = 1;
+	} else {
+		snprintf(base, sizeof base, "%s", path);
+		snprintf(o->tmp, sizeof o->tmp, "%s/.%s.XXXXXX", dir, basename(base));
+		fd = mkostemp(o->tmp, O_CLOEXEC);
+		if (fd < 0)
+			return pm_seterr(err, "cannot create '%s': %s", path, strerror(errno));
+		um = umask(0);
+		umask(um);
+		fchmod(fd, 0666 & ~um);
+		o->tmpfile_kind = 2;
+	}
+	o->f = fdopen(fd, "wb");
+	if (!o->f) {
+		int e = errno;
+		close(fd);
+		if (o->tmpfile_kind == 2)
+			unlink(o->tmp);
+		return pm_seterr(err, "cannot create '%s': %s", path, strerror(e));
+	}
+	o->fd = fd;
+	return 0;
+}
+
+int
+pm_out_commit(pm_out *o, pm_error *err)
+{
+	char proc[64], tmp[4096 + 32];
+	int e;
+
+	if (!o->f)
+		return pm_seterr(err, "'%s': output already closed", o->path);
+	if (o->is_stdout) {
+		int bad = fflush(o->f) != 0 || ferror(o->f);
+		e = errno;
+		o->f = NULL;
+		if (bad)
+			return pm_seterr(err, "cannot write stdout: %s", strerror(e ? e : EIO));
+		return 0;
+	}
+	if (fflush(o->f) != 0 || ferror(o->f) || fsync(o->fd) != 0) {
+		e = errno ? errno : EIO;
+		pm_out_abort(o);
+		return pm_seterr(err, "cannot write '%s': %s", o->path, strerror(e));
+	}
+	if (o->tmpfile_kind == 1) {
+		/* An unnamed file needs a name before it can be renamed over the
+		 * target (linkat cannot replace an existing file). */
+		snprintf(proc, sizeof proc, "/proc/self/fd/%d", o->fd);
+		for (int i = 0;; i++) {
+			char dir[4096];
+			dirof(o->path, dir, sizeof dir);
+			snprintf(tmp, sizeof tmp, "%s/.pm-out.%ld.%d", dir, (long)getpid(), i);
+			if (linkat(AT_FDCWD, proc, AT_FDCWD, tmp, AT_SYMLINK_FOLLOW) == 0)
+				break;
+			if (errno != EEXIST || i > 100) {
+				e = errno;
+				pm_out_abort(o);
+				return pm_seterr(err, "cannot write '%s': %s", o->path, strerror(e));
+			}
+		}
+	} else {
+		snprintf(tmp, sizeof tmp, "%s", o->tmp);
+	}
+	if (fclose(o->f) != 0) {
+		e = errno;
+		o->f = NULL;
+		unlink(tmp);
+		return pm_seterr(err, "cannot write '%s': %s", o->path, strerror(e));
+	}
+	o->f = NULL;
+	if (rename(tmp, o->path) != 0) {
+		e = errno;
+		unlink(tmp);
+		return pm_seterr(err, "cannot write '%s': %s", o->path, strerror(e));
+	}
+	return 0;
+}
+
+void
+pm_out_abort(pm_out *o)
+{
+	if (!o->f)
+		return;
+	if (!o->is_stdout) {
+		fclose(o->f);
+		if (o->tmpfile_kind == 2)
+			unlink(o->tmp);
+	}
+	o->f = NULL;
+}

@@ -1,0 +1,30 @@
+/* atomic.h — output files that appear whole or not at all.
+ *
+ * pm_out_open creates an unnamed file in the target's directory (O_TMPFILE,
+ * or a hidden temporary name where that is unsupported); pm_out_commit
+ * flushes, fsyncs, checks every write error and then links/renames it over
+ * the target. Until commit the target is untouched; a process killed before
+ * commit leaves no partial file (with O_TMPFILE not even a temporary one).
+ * Path "-" means stdout: written directly, errors still checked at commit. */
+#ifndef PM_ATOMIC_H
+#define PM_ATOMIC_H
+
+#include <stdio.h>
+
+#include "err.h"
+
+typedef struct pm_out {
+	FILE *f;            /* write here */
+	int fd;             /* fileno(f) */
+	int is_stdout;
+	int tmpfile_kind;   /* 0 stdout, 1 O_TMPFILE, 2 named temporary */
+	char path[4096];    /* target */
+	char tmp[4096];     /* named temporary, if tmpfile_kind == 2 */
+} pm_out;
+
+int pm_out_open(pm_out *o, const char *path, pm_error *err);
+int pm_out_commit(pm_out *o, pm_error *err);
+/* Discards the output; the target is left as it was. Safe to call twice. */
+void pm_out_abort(pm_out *o);
+
+#endif

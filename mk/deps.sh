@@ -1,0 +1,20 @@
+#!/bin/sh
+# deps.sh — make sure the Debian packages pm builds and tests with are here.
+# As root, installs what is missing; otherwise prints the apt-get line.
+pkgs="build-essential pkg-config libopenexr-dev libopenmesh-dev libembree-dev libpng-dev parallel"
+missing=
+for p in $pkgs; do
+	dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q 'install ok installed' ||
+		missing="$missing $p"
+done
+[ -z "$missing" ] && exit 0
+if [ "$(id -u)" -eq 0 ]; then
+	echo "deps: installing$missing"
+	export DEBIAN_FRONTEND=noninteractive
+	apt-get update -qq || exit 1
+	apt-get install -y -qq --no-install-recommends $missing >/dev/null || exit 1
+else
+	echo "deps: missing packages; run as root:" >&2
+	echo "  apt-get install$missing" >&2
+	exit 1
+fi

@@ -1,0 +1,36 @@
+/* util.h — what every pm program shares: messages, exits, checked number
+ * parsing, the command line as a string for file histories.
+ *
+ * Exit codes: 0 success, 1 a failed run, 2 a bad command line. */
+#ifndef PM_UTIL_H
+#define PM_UTIL_H
+
+#include <stdint.h>
+
+#include "err.h"
+
+extern const char *argv0;     /* program name, set by util_init */
+
+void util_init(int argc, char **argv);
+
+/* "pm-NAME: message" on stderr and exit 1. */
+_Noreturn void die(const char *fmt, ...) __attribute__((format(printf, 1, 2)));
+/* die() with a pm_error's message. */
+_Noreturn void die_err(const pm_error *err);
+/* "pm-NAME: message" plus the usage line, exit 2. */
+_Noreturn void usage_err(const char *usage, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
+void warn(const char *fmt, ...) __attribute__((format(printf, 1, 2)));
+
+/* Checked parsers: the whole string must be a number within [lo, hi], else
+ * usage_err naming the option. */
+long long parse_int(const char *s, long long lo, long long hi, const char *opt, const char *usage);
+uint64_t parse_u64(const char *s, const char *opt, const char *usage);
+double parse_real(const char *s, double lo, double hi, const char *opt, const char *usage);
+
+/* The full command line, shell-quoted where needed; static storage. */
+const char *cmdline(void);
+
+/* Threads: n > 0 as given, 0 for all cores. Sets the OpenMP thread count. */
+void set_threads(int n);
+
+#endif
