@@ -35,7 +35,7 @@ pm_out_open(pm_out *o, const char *path, pm_error *err)
 		snprintf(o->path, sizeof o->path, "stdout");
 		return 0;
 	}
-	if (strlen(path) >= sizeof o->path - 32)
+	if (strlen(path) >= 2000)
 		return pm_seterr(err, "'%s': path too long", path);
 	snprintf(o->path, sizeof o->path, "%s", path);
 	dirof(path, dir, sizeof dir);
@@ -44,7 +44,9 @@ pm_out_open(pm_out *o, const char *path, pm_error *err)
 		o->tmpfile_kind = 1;
 	} else {
 		snprintf(base, sizeof base, "%s", path);
-		snprintf(o->tmp, sizeof o->tmp, "%s/.%s.XXXXXX", dir, basename(base));
+		/* The path's length was checked above, so this fits. */
+		if (snprintf(o->tmp, sizeof o->tmp, "%.2000s/.%.2000s.XXXXXX", dir, basename(base)) < 0)
+			return pm_seterr(err, "'%s': bad path", path);
 		fd = mkostemp(o->tmp, O_CLOEXEC);
 		if (fd < 0)
 			return pm_seterr(err, "cannot create '%s': %s", path, strerror(errno));

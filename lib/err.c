@@ -21,7 +21,7 @@ pm_seterr(pm_error *err, const char *fmt, ...)
 int
 pm_preferr(pm_error *err, const char *fmt, ...)
 {
-	char old[sizeof err->msg], pre[sizeof err->msg];
+	char old[sizeof err->msg], pre[256];
 	va_list ap;
 
 	if (!err)
@@ -30,6 +30,8 @@ pm_preferr(pm_error *err, const char *fmt, ...)
 	va_start(ap, fmt);
 	vsnprintf(pre, sizeof pre, fmt, ap);
 	va_end(ap);
-	snprintf(err->msg, sizeof err->msg, "%s: %s", pre, old);
+	/* Bounded so that prefix and message always fit in msg. */
+	if (snprintf(err->msg, sizeof err->msg, "%s: %.*s", pre, (int)(sizeof err->msg - sizeof pre - 3), old) < 0)
+		err->msg[0] = 0;
 	return -1;
 }

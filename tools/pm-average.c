@@ -1,0 +1,159 @@
+/* pm-average — averages pass images (or earlier averages) weighted by their
+ * pass counts, keeping per-pixel M2 so averages of averages are exact and
+ * the spread gives a standard error (lib/average.h, formats/image.md).
+ * Reads one input at a time: memory is O(image), not O(inputs). */
+#include <getopt.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "average.h"
+#include "image.h"
+#include "util.h"
+
+static const char usage[] = "pm-average [-fhqs] [-o OUT.exr] IMAGE...";
+
+static void
+help(void)
+{
+	printf("usage: %s\n"
+	       "  -f, --force     average despite differing pm.scene_hash (default: refuse)\n"
+	       "  -h, --help      print this help and exit\n"
+	       "  -o, --output F  write the average to the EXR file F (default: none)\n"
+	       "  -q, --quiet     no warnings (default: warn about dropped layers and\n"
+	       "                  forced mismatches)\n"
+	       "  -s, --stats     print passes, mean_stderr and mean to stdout (default: off)\n"
+	       "At least one of -o and -s is needed.\n", usage);
+}
+
+/* Attributes copied to the output when every input has the same value (or
+ * every input lacks it). */
+static const char *const agreed[] = {
+	"pm.scene_hash", "pm.estimator", "pm.k", "pm.spp", "pm.photons", "pm.time",
+};
+enum { NAGREED = sizeof agreed / sizeof agreed[0] };
+
+static int
+same(const char *a, const char *b)
+{
+	return a == b || (a && b && strcmp(a, b) == 0);
+}
+
+/* getopt's own messages would add a second line; say it once, our way. */
+static void
+bad_option(int opt, char **argv)
+{
+	if (opt == ':')
+		usage_err(usage, "option '%s' needs an argument", argv[optind - 1]);
+	if (optopt)
+		usage_err(usage, "unknown option '-%c'", optopt);
+	usage_err(usage, "unknown option '%s'", argv[optind - 1]);
+}
+
+int
+main(int argc, char **argv)
+{
+	static const struct option longopts[] = {
+		{ "force", no_argument, NULL, 'f' },
+		{ "help", no_argument, NULL, 'h' },
+		{ "output", required_argument, NULL, 'o' },
+		{ "quiet", no_argument, NULL, 'q' },
+		{ "stats", no_argument, NULL, 's' },
+		{ NULL, 0, NULL, 0 },
+	};
+	const char *outpath = NULL, *first = NULL;
+	char *value[NAGREED] = { NULL };
+	int agree[NAGREED];
+	int force = 0, quiet = 0, stats = 0, opt, ndropped = 0;
+	char (*dropped)[PM_CHAN_NAME] = NULL;
+	pm_error err;
+	pm_avg avg;
+	pm_image img;
+
+	util_init(argc, argv);
+	while ((opt = getopt_long(argc, argv, ":fho:qs", longopts, NULL)) != -1) {
+		switch (opt) {
+		case 'f': force = 1; break;
+		case 'h': help(); return 0;
+		case 'o': outpath = optarg; break;
+		case 'q': quiet = 1; break;
+		case 's': stats = 1; break;
+		default: bad_option(opt, argv);
+		}
+	}
+	if (optind >= argc)
+		usage_err(usage, "no input images");
+	if (!outpath && !stats)
+		usage_err(usage, "nothing to do: give -o OUT.exr or --stats");
+
+	pm_avg_init(&avg);
+	for (int i = optind; i < argc; i++) {
+		const char *path = argv[i];
+		double passes;
+
+		if (pm_image_read_exr(&img, path, &err))
+			die_err(&err);
+		if (pm_image_passes(&img, &passes, &err))
+			die("'%s': %s", path, err.msg);
+		if (!first) {
+			first = path;
+			/* Later inputs can only drop channels this one has. */
+			if (!(dropped = calloc(img.nchan, sizeof *dropped)))
+				die("out of memory");
+			for (int k = 0; k < NAGREED; k++) {
+				const char *v = pm_image_attr(&img, agreed[k]);
+				value[k] = v ? strdup(v) : NULL;
+				agree[k] = !v || value[k];
+			}
+		} else {
+			const char *hash = pm_image_attr(&img, "pm.scene_hash");
+			if (img.width != avg.width || img.height != avg.height)
+				die("'%s': size %dx%d differs from '%s' (%dx%d)", path,
+				    img.width, img.height, first, avg.width, avg.height);
+			if (!same(hash, value[0])) {
+				if (!force)
+					die("'%s': scene hash %s differs from '%s' (%s)", path,
+					    hash ? hash : "(none)", first, value[0] ? value[0] : "(none)");
+				if (!quiet && agree[0])
+					warn("'%s': scene hash %s differs from '%s' (%s); averaging anyway",
+					     path, hash ? hash : "(none)", first, value[0] ? value[0] : "(none)");
+			}
+			for (int k = 0; k < NAGREED; k++)
+				if (!same(pm_image_attr(&img, agreed[k]), value[k]))
+					agree[k] = 0;
+			for (int c = 0; c < avg.nchan; c++)
+				if (!pm_image_chan(&img, avg.chan[c]))
+					snprintf(dropped[ndropped++], PM_CHAN_NAME, "%s", avg.chan[c]);
+		}
+		if (pm_avg_add(&avg, &img, passes, &err))
+			die("'%s': %s", path, err.msg);
+		for (int c = 0; c < ndropped && !quiet; c++)
+			warn("'%s': no channel '%s'; it is left out of the average", path, dropped[c]);
+		ndropped = 0;
+		pm_image_free(&img);
+	}
+
+	if (outpath) {
+		if (pm_avg_image(&avg, &img, &err) ||
+		    pm_image_set_attr(&img, "pm.command", cmdline(), &err))
+			die_err(&err);
+		for (int k = 0; k < NAGREED; k++)
+			if (agree[k] && value[k] && pm_image_set_attr(&img, agreed[k], value[k], &err))
+				die_err(&err);
+		if (pm_image_write_exr(&img, outpath, &err))
+			die_err(&err);
+		pm_image_free(&img);
+	}
+	if (stats) {
+		double mean, mean_se;
+		pm_avg_stats(&avg, &mean, &mean_se);
+		printf("passes: %.0f\nmean_stderr: %.9g\nmean: %.9g\n", avg.n, mean_se, mean);
+		if (fflush(stdout) != 0 || ferror(stdout))
+			die("cannot write stdout");
+	}
+	for (int k = 0; k < NAGREED; k++)
+		free(value[k]);
+	free(dropped);
+	pm_avg_free(&avg);
+	return 0;
+}
