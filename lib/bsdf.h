@@ -15,17 +15,17 @@
  * n. Reciprocal: eval(wi, wo) == eval(wo, wi). */
 pm_vec3 pm_bsdf_eval(const pm_material *m, pm_vec3 n, pm_vec3 wi, pm_vec3 wo);
 
-typedef struct pm_bsdf_sample {
+typedef struct pm_scatter {
 	pm_vec3 wi;         /* sampled direction */
 	pm_vec3 weight;     /* f cos / pdf (the throughput factor) */
 	int delta;          /* 1 if sampled from a delta (mirror, glass) */
-} pm_bsdf_sample;
+} pm_scatter;
 
 /* Samples wi given wo. ng is the geometric front normal of the surface (not
  * flipped): glass uses it to tell entering from leaving. Returns 0 and sets
  * *s, or -1 if the sample is absorbed (direction below the surface). */
 int pm_bsdf_sample(const pm_material *m, pm_vec3 ng, pm_vec3 wo, pm_rng *r,
-                   pm_bsdf_sample *s);
+                   pm_scatter *s);
 
 /* Directional albedo used for Russian roulette in the light pass: the
  * largest channel of the material's total reflectance (kd + ks, ks, ...). */

@@ -23,7 +23,16 @@ util_init(int argc, char **argv)
 	argv0 = slash ? slash + 1 : argv[0];
 	for (int i = 0; i < argc && n < sizeof cmdbuf - 8; i++) {
 		const char *a = i == 0 ? argv0 : argv[i];
-		int plain = *a != 0 && strspn(a, "abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789-_./=,:+@%") == strlen(a);
+		int plain;
+
+		/* The thread count and quietness do not change what a program
+		 * writes, so they are left out of the recorded command: outputs
+		 * stay byte-identical whatever -j says. */
+		if (i > 0 && (!strcmp(a, "-q") || !strncmp(a, "-j", 2))) {
+			i += !strcmp(a, "-j");
+			continue;
+		}
+		plain = *a != 0 && strspn(a, "abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789-_./=,:+@%") == strlen(a);
 		if (i > 0)
 			cmdbuf[n++] = ' ';
 		if (!plain)

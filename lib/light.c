@@ -1,0 +1,158 @@
+/* light.c — emitters and their sampling (see light.h). */
+#include "light.h"
+
+#include <math.h>
+#include <stdlib.h>
+
+#include "bsdf.h"
+
+int
+pm_lights_build(pm_lights *L, const pm_scene *s, const pm_vec3 *verts, float t, pm_error *err)
+{
+	int n = s->nlights, k = 0;
+	double acc = 0;
+
+	L->l = NULL;
+	L->cdf = NULL;
+	L->n = 0;
+	L->total = pm_v3(0, 0, 0);
+	for (uint32_t i = 0; i < s->ntris; i++) {
+		const pm_material *m = &s->mats[s->objs[s->poly_obj[s->tri_poly[i]]].material];
+		if (pm_maxc(m->emit) > 0)
+			n++;
+	}
+	if (n == 0)
+		return pm_seterr(err, "%s: scene has no lights", s->path);
+	L->l = calloc((size_t)n, sizeof *L->l);
+	L->cdf = calloc((size_t)n + 1, sizeof *L->cdf);
+	if (!L->l || !L->cdf) {
+		pm_lights_free(L);
+		return pm_seterr(err, "out of memory");
+	}
+	for (int i = 0; i < s->nlights; i++, k++) {
+		pm_light *l = &L->l[k];
+		l->tri = -1;
+		l->p0 = pm_scene_light_at(s, i, t);
+		l->le = s->lights[i].power;
+		l->power = s->lights[i].power;
+	}
+	for (uint32_t i = 0; i < s->ntris; i++) {
+		const pm_material *m = &s->mats[s->objs[s->poly_obj[s->tri_poly[i]]].material];
+		pm_light *l;
+		pm_vec3 c;
+		if (!(pm_maxc(m->emit) > 0))
+			continue;
+		l = &L->l[k++];
+		l->tri = (int)i;
+		l->p0 = verts[s->tris[i][0]];
+		l->e1 = pm_sub(verts[s->tris[i][1]], l->p0);
+		l->e2 = pm_sub(verts[s->tris[i][2]], l->p0);
+		c = pm_cross(l->e1, l->e2);
+		l->area = 0.5f * pm_len(c);
+		l->n = s->poly_normal[s->tri_poly[i]];
+		l->twosided = m->emit_twosided;
+		l->le = m->emit;
+		l->power = pm_scale(m->emit, (float)PM_PI * l->area * (l->twosided ? 2.0f : 1.0f));
+	}
+	L->n = k;
+	for (int i = 0; i < k; i++) {
+		L->total = pm_add(L->total, L->l[i].power);
+		acc += pm_lum(L->l[i].power);
+		L->cdf[i + 1] = (float)acc;
+	}
+	if (!(acc > 0)) {
+		pm_lights_free(L);
+		return pm_seterr(err, "%s: the lights emit no power", s->path);
+	}
+	for (int i = 1; i <= k; i++)
+		L->cdf[i] = (float)(L->cdf[i] / acc);
+	L->cdf[k] = 1.0f;
+	return 0;
+}
+
+void
+pm_lights_free(pm_lights *L)
+{
+	free(L->l);
+	free(L->cdf);
+	L->l = NULL;
+	L->cdf = NULL;
+	L->n = 0;
+}
+
+int
+pm_lights_pick(const pm_lights *L, float u, float *pdf)
+{
+	int lo = 0, hi = L->n - 1;
+
+	while (lo < hi) {
+		int mid = (lo + hi) / 2;
+		if (L->cdf[mid + 1] > u)
+			hi = mid;
+		else
+			lo = mid + 1;
+	}
+	*pdf = L->cdf[lo + 1] - L->cdf[lo];
+	return lo;
+}
+
+static pm_vec3
+tri_point(const pm_light *l, float u1, float u2)
+{
+	float su = sqrtf(u1);
+
+	return pm_add(l->p0, pm_add(pm_scale(l->e1, su * (1.0f - u2)), pm_scale(l->e2, su * u2)));
+}
+
+void
+pm_lights_emit(const pm_lights *L, pm_rng *r, pm_vec3 *o, pm_vec3 *d, pm_vec3 *n, pm_vec3 *power)
+{
+	float pdf;
+	const pm_light *l = &L->l[pm_lights_pick(L, pm_rng_f(r), &pdf)];
+	float u1 = pm_rng_f(r), u2 = pm_rng_f(r), u3 = pm_rng_f(r), u4 = pm_rng_f(r);
+
+	*power = pm_scale(l->power, 1.0f / pdf);
+	if (l->tri < 0) {
+		*o = l->p0;
+		*d = pm_sample_sphere(u1, u2);
+		*n = *d;
+		return;
+	}
+	/* Uniform point, cosine-weighted direction about the emitting side:
+	 * the flux leaving a Lambertian emitter (pi Le A in all). */
+	*o = tri_point(l, u1, u2);
+	*n = l->n;
+	if (l->twosided && pm_rng_f(r) < 0.5f)
+		*n = pm_neg(l->n);
+	*d = pm_sample_cosine(*n, u3, u4);
+}
+
+int
+pm_lights_sample(const pm_lights *L, pm_vec3 x, pm_rng *r, pm_vec3 *wi, float *dist, pm_vec3 *li)
+{
+	float pdf;
+	const pm_light *l = &L->l[pm_lights_pick(L, pm_rng_f(r), &pdf)];
+	float u1 = pm_rng_f(r), u2 = pm_rng_f(r);
+	pm_vec3 p, v;
+	float d2, d, cl;
+
+	p = l->tri < 0 ? l->p0 : tri_point(l, u1, u2);
+	v = pm_sub(p, x);
+	d2 = pm_dot(v, v);
+	if (!(d2 > 0))
+		return 0;
+	d = sqrtf(d2);
+	*wi = pm_scale(v, 1.0f / d);
+	*dist = d;
+	if (l->tri < 0) {
+		*li = pm_scale(l->le, 1.0f / (4.0f * (float)PM_PI * d2 * pdf));
+		return 1;
+	}
+	cl = -pm_dot(*wi, l->n);
+	if (cl < 0 && l->twosided)
+		cl = -cl;
+	if (!(cl > 0))
+		return 0;
+	*li = pm_scale(l->le, cl * l->area / (d2 * pdf));
+	return 1;
+}

@@ -1,0 +1,49 @@
+/* light.h — the scene's emitters at one shutter time: point lights and
+ * emitting triangles, chosen in proportion to their power both for emitting
+ * photons (light pass) and for shadow rays (view pass).
+ *
+ * Power of an emitting triangle of area A and radiance Le: pi Le A, twice
+ * that if it emits on both sides. Power of a point light: as given. */
+#ifndef PM_LIGHT_H
+#define PM_LIGHT_H
+
+#include "err.h"
+#include "rng.h"
+#include "scene.h"
+#include "vec.h"
+
+typedef struct pm_light {
+	int tri;            /* emitting triangle, or -1 for a point light */
+	pm_vec3 p0, e1, e2; /* triangle p0 + u e1 + v e2; point light at p0 */
+	pm_vec3 n;          /* triangle's unit front normal */
+	float area;
+	int twosided;
+	pm_vec3 le;         /* radiance (triangle) or power (point light) */
+	pm_vec3 power;      /* total emitted power, W per channel */
+} pm_light;
+
+typedef struct pm_lights {
+	pm_light *l;
+	int n;
+	float *cdf;         /* n + 1 entries, by mean power over the channels */
+	pm_vec3 total;      /* sum of the lights' power */
+} pm_lights;
+
+int pm_lights_build(pm_lights *L, const pm_scene *s, const pm_vec3 *verts, float t, pm_error *err);
+void pm_lights_free(pm_lights *L);
+
+/* Picks a light in proportion to power; *pdf is its probability. */
+int pm_lights_pick(const pm_lights *L, float u, float *pdf);
+
+/* Light pass: one photon's start. *power is the power it carries per emitted
+ * path (the light's power divided by the probability of picking it). */
+void pm_lights_emit(const pm_lights *L, pm_rng *r, pm_vec3 *o, pm_vec3 *d, pm_vec3 *n, pm_vec3 *power);
+
+/* View pass: a shadow-ray sample toward a light from point x. Fills the
+ * unit direction *wi, the distance *dist to the light point, and *li =
+ * Le cos_l / (pdf_area d^2) (or I / d^2 for a point light) divided by the
+ * pick probability: multiplied by f_r cos_x and visibility it is an unbiased
+ * estimate of direct light. Returns 0 if the sample carries nothing. */
+int pm_lights_sample(const pm_lights *L, pm_vec3 x, pm_rng *r, pm_vec3 *wi, float *dist, pm_vec3 *li);
+
+#endif

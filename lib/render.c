@@ -1,0 +1,247 @@
+/* render.c — the view pass (see render.h). */
+#include "render.h"
+
+#include <float.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "bsdf.h"
+#include "camera.h"
+#include "rng.h"
+
+#define RENDER_DOMAIN 0x52454e444552ull
+
+const char *const pm_render_chans[PM_RENDER_NCHAN] = {
+	"R", "G", "B",
+	"direct.R", "direct.G", "direct.B",
+	"indirect.R", "indirect.G", "indirect.B",
+	"specular.R", "specular.G", "specular.B",
+	"size", "count",
+};
+
+const char *
+pm_estimator_name(int e)
+{
+	switch (e) {
+	case PM_EST_CLASSICAL: return "classical";
+	case PM_EST_COMPENSATED: return "compensated";
+	case PM_EST_PATH: return "path";
+	default: return "?";
+	}
+}
+
+int
+pm_estimator_parse(const char *name)
+{
+	for (int e = PM_EST_CLASSICAL; e <= PM_EST_PATH; e++)
+		if (strcmp(name, pm_estimator_name(e)) == 0)
+			return e;
+	return -1;
+}
+
+/* What one camera sample brought, by where it came from (formats/image.md):
+ * direct = emission seen and shadow rays at a first-hit diffuse surface;
+ * indirect = the photon estimate there (or, for path, everything after the
+ * first bounce); specular = whatever arrived through a first hit that
+ * continued the path (mirror, glass, strong glossy). */
+typedef struct sample {
+	pm_vec3 direct, indirect, specular;
+	float size;
+	int count, estimated;
+} sample;
+
+typedef struct ctx {
+	const pm_scene *s;
+	const pm_accel *a;
+	const pm_lights *L;
+	const pm_photons *map;
+	const pm_polyindex *pi;
+	const pm_render_opts *o;
+} ctx;
+
+typedef struct scratch {
+	pm_nn *nn;
+	pm_comp_scratch *comp;
+} scratch;
+
+static pm_vec3
+direct_light(const ctx *c, pm_vec3 x, pm_vec3 ng, pm_vec3 n, pm_vec3 wo,
+             const pm_material *m, pm_rng *r)
+{
+	pm_vec3 wi, li, f;
+	float dist, cosx;
+
+	if (!pm_lights_sample(c->L, x, r, &wi, &dist, &li))
+		return pm_v3(0, 0, 0);
+	cosx = pm_dot(wi, n);
+	if (cosx <= 0)
+		return pm_v3(0, 0, 0);
+	f = pm_bsdf_eval(m, n, wi, wo);
+	if (pm_maxc(f) <= 0)
+		return pm_v3(0, 0, 0);
+	{
+		pm_vec3 o = pm_accel_offset(c->a, x, ng, wi);
+		float far = pm_len(pm_sub(pm_add(x, pm_scale(wi, dist)), o));
+		/* Stop short of the light's own surface. */
+		if (pm_accel_occluded(c->a, o, wi, 0.0f, far * (1.0f - 1e-4f)))
+			return pm_v3(0, 0, 0);
+	}
+	return pm_scale(pm_mul(f, li), cosx);
+}
+
+static pm_vec3
+emitted(const pm_material *m, pm_vec3 ng, pm_vec3 wo)
+{
+	if (!(pm_maxc(m->emit) > 0))
+		return pm_v3(0, 0, 0);
+	if (pm_dot(ng, wo) > 0 || m->emit_twosided)
+		return m->emit;
+	return pm_v3(0, 0, 0);
+}
+
+static void
+trace(const ctx *c, scratch *sc, pm_vec3 o, pm_vec3 d, pm_rng *r, sample *out)
+{
+	int maxd = c->o->max_depth > 0 ? c->o->max_depth : 64;
+	pm_vec3 beta = pm_v3(1, 1, 1);
+	pm_vec3 *bucket = NULL;   /* where contributions after the first hit go */
+	int after_delta = 1;      /* the camera counts as a delta: emitters seen count */
+	pm_hit h;
+
+	memset(out, 0, sizeof *out);
+	for (int depth = 0; depth < maxd; depth++) {
+		const pm_material *m;
+		pm_vec3 wo = pm_neg(d), n, e;
+		pm_vec3 *here;
+		pm_scatter bs;
+
+		if (!pm_accel_hit(c->a, o, d, 0.0f, FLT_MAX, &h))
+			return;
+		m = &c->s->mats[c->s->objs[h.obj].material];
+		n = pm_dot(h.ng, wo) >= 0 ? h.ng : pm_neg(h.ng);
+		if (depth == 0)
+			bucket = pm_mat_is_photon_surface(m) ? &out->indirect : &out->specular;
+		here = depth == 0 ? (m->strong ? &out->specular : &out->direct) : bucket;
+		if (after_delta) {
+			e = emitted(m, h.ng, wo);
+			*here = pm_add(*here, pm_mul(beta, e));
+		}
+		if (m->kind == PM_MAT_DIFFUSE || m->kind == PM_MAT_GLOSSY)
+			*here = pm_add(*here, pm_mul(beta, direct_light(c, h.p, h.ng, n, wo, m, r)));
+		if (pm_mat_is_photon_surface(m) && c->o->estimator != PM_EST_PATH) {
+			pm_estimate_info info;
+			pm_vec3 L;
+			if (c->o->estimator == PM_EST_COMPENSATED)
+				L = pm_estimate_compensated(c->pi, c->map, h.p, n, wo, m, c->o->k, sc->comp, &info);
+			else
+				L = pm_estimate_classical(c->map, h.p, n, wo, m, c->o->k, sc->nn, &info);
+			*bucket = pm_add(*bucket, pm_mul(beta, L));
+			if (depth == 0) {
+				out->size = info.size;
+				out->count = info.nphotons;
+				out->estimated = 1;
+			}
+			return;
+		}
+		if (pm_bsdf_sample(m, h.ng, wo, r, &bs) != 0)
+			return;
+		beta = pm_mul(beta, bs.weight);
+		after_delta = bs.delta;
+		if (depth >= 3) {
+			float q = fminf(0.95f, pm_maxc(beta));
+			if (!(q > 0) || pm_rng_f(r) >= q)
+				return;
+			beta = pm_scale(beta, 1.0f / q);
+		}
+		o = pm_accel_offset(c->a, h.p, h.ng, bs.wi);
+		d = bs.wi;
+	}
+}
+
+static int
+finite_sample(const sample *s)
+{
+	return pm_vfinite(s->direct) && pm_vfinite(s->indirect) && pm_vfinite(s->specular);
+}
+
+int
+pm_render(const pm_scene *s, const pm_accel *a, const pm_lights *L,
+          const pm_photons *map, const pm_polyindex *pi,
+          const pm_render_opts *o, pm_image *img, pm_error *err)
+{
+	ctx c = {s, a, L, map, pi, o};
+	pm_camera cam;
+	int W, H, fail = 0;
+	size_t npx;
+
+	if (o->estimator != PM_EST_PATH && !map)
+		return pm_seterr(err, "the %s estimate needs a photon map", pm_estimator_name(o->estimator));
+	if (o->estimator == PM_EST_COMPENSATED && !pi)
+		return pm_seterr(err, "the compensated estimate needs a polygon index");
+	if (pm_camera_init(&cam, &s->camera, err) != 0)
+		return pm_preferr(err, "%s", s->path);
+	W = cam.width;
+	H = cam.height;
+	npx = (size_t)W * H;
+	if (pm_image_init(img, W, H, PM_RENDER_NCHAN, pm_render_chans, err) != 0)
+		return -1;
+
+	#pragma omp parallel reduction(|:fail)
+	{
+		scratch sc = {0};
+		sc.nn = malloc((size_t)(o->k > 0 ? o->k : 1) * sizeof *sc.nn);
+		if (o->estimator == PM_EST_COMPENSATED)
+			sc.comp = pm_comp_scratch_new(o->k);
+		if (!sc.nn || (o->estimator == PM_EST_COMPENSATED && !sc.comp))
+			fail = 1;
+		#pragma omp for schedule(dynamic, 1)
+		for (int y = 0; y < H; y++) {
+			if (fail)
+				continue;
+			for (int x = 0; x < W; x++) {
+				size_t i = (size_t)y * W + x;
+				pm_rng r = pm_rng_seed(o->seed ^ RENDER_DOMAIN, i);
+				pm_vec3 dsum = {0}, isum = {0}, ssum = {0};
+				double size = 0;
+				long count = 0;
+				int nest = 0;
+				for (int k = 0; k < o->spp; k++) {
+					sample smp;
+					float sx = (float)x + pm_rng_f(&r), sy = (float)y + pm_rng_f(&r);
+					trace(&c, &sc, cam.eye, pm_camera_dir(&cam, sx, sy), &r, &smp);
+					if (!finite_sample(&smp))
+						continue;
+					dsum = pm_add(dsum, smp.direct);
+					isum = pm_add(isum, smp.indirect);
+					ssum = pm_add(ssum, smp.specular);
+					if (smp.estimated) {
+						size += smp.size;
+						count += smp.count;
+						nest++;
+					}
+				}
+				float inv = 1.0f / (float)o->spp;
+				pm_vec3 tot = pm_scale(pm_add(dsum, pm_add(isum, ssum)), inv);
+				float v[PM_RENDER_NCHAN] = {
+					tot.x, tot.y, tot.z,
+					dsum.x * inv, dsum.y * inv, dsum.z * inv,
+					isum.x * inv, isum.y * inv, isum.z * inv,
+					ssum.x * inv, ssum.y * inv, ssum.z * inv,
+					nest ? (float)(size / nest) : 0.0f,
+					nest ? (float)count / (float)nest : 0.0f,
+				};
+				for (int ch = 0; ch < PM_RENDER_NCHAN; ch++)
+					img->px[(size_t)ch * npx + i] = v[ch];
+			}
+		}
+		free(sc.nn);
+		if (sc.comp)
+			pm_comp_scratch_free(sc.comp);
+	}
+	if (fail) {
+		pm_image_free(img);
+		return pm_seterr(err, "out of memory");
+	}
+	return 0;
+}

@@ -1,0 +1,146 @@
+/* shoot.c — the light pass (see shoot.h). */
+#include "shoot.h"
+
+#include <float.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "bsdf.h"
+#include "rng.h"
+
+#define CHUNK 1024          /* paths per work item */
+#define BATCH 64            /* work items per round */
+#define SHOOT_DOMAIN 0x5348004f4f54ull
+
+typedef struct chunk {
+	pm_photon *p;
+	size_t n, cap;
+	uint32_t count[CHUNK];  /* photons stored by each path of the chunk */
+	int oom;
+} chunk;
+
+static void
+push(chunk *c, const pm_photon *ph)
+{
+	if (c->n == c->cap) {
+		size_t cap = c->cap ? 2 * c->cap : 256;
+		pm_photon *p = realloc(c->p, cap * sizeof *p);
+		if (!p) {
+			c->oom = 1;
+			return;
+		}
+		c->p = p;
+		c->cap = cap;
+	}
+	c->p[c->n++] = *ph;
+}
+
+static void
+trace_path(const pm_scene *s, const pm_accel *a, const pm_lights *L, const pm_shoot_opts *o,
+           uint64_t idx, chunk *c, uint32_t *count)
+{
+	pm_rng r = pm_rng_seed(o->seed ^ SHOOT_DOMAIN, idx);
+	pm_vec3 org, d, n, power;
+	int maxb = o->max_bounces > 0 ? o->max_bounces : 256;
+	pm_hit h;
+
+	pm_lights_emit(L, &r, &org, &d, &n, &power);
+	if (pm_dot(n, d) != 0)
+		org = pm_accel_offset(a, org, n, d);
+	for (int bounce = 0; bounce < maxb; bounce++) {
+		const pm_material *m;
+		pm_vec3 wo = pm_neg(d);
+		pm_scatter sc;
+		float q;
+
+		if (!pm_accel_hit(a, org, d, 0.0f, FLT_MAX, &h))
+			return;
+		m = &s->mats[s->objs[h.obj].material];
+		if (bounce > 0 && pm_mat_is_photon_surface(m)) {
+			pm_photon ph;
+			pm_vec3 ns = pm_dot(h.ng, wo) >= 0 ? h.ng : pm_neg(h.ng);
+			pm_photon_pack(&ph, h.p, wo, ns, power);
+			push(c, &ph);
+			(*count)++;
+		}
+		if (pm_bsdf_sample(m, h.ng, wo, &r, &sc) != 0)
+			return;
+		q = fminf(1.0f, pm_maxc(sc.weight));
+		if (!(q > 0) || pm_rng_f(&r) >= q)
+			return;
+		power = pm_scale(pm_mul(power, sc.weight), 1.0f / q);
+		org = pm_accel_offset(a, h.p, h.ng, sc.wi);
+		d = sc.wi;
+	}
+}
+
+int
+pm_shoot(const pm_scene *s, const pm_accel *a, const pm_lights *L,
+         const pm_shoot_opts *o, pm_photons *out, pm_error *err)
+{
+	uint64_t want = o->nphotons, emitted = 0, stored = 0;
+	uint64_t maxp = o->max_paths ? o->max_paths : 64 * want + (1u << 20);
+	chunk *ch = calloc(BATCH, sizeof *ch);
+	pm_photon *all = NULL;
+	float lo[3] = {FLT_MAX, FLT_MAX, FLT_MAX}, hi[3] = {-FLT_MAX, -FLT_MAX, -FLT_MAX};
+	int done = 0, oom = 0;
+
+	memset(out, 0, sizeof *out);
+	if (!ch)
+		return pm_seterr(err, "out of memory");
+	if (want > 0 && !(all = malloc(want * sizeof *all))) {
+		free(ch);
+		return pm_seterr(err, "out of memory for %llu photons", (unsigned long long)want);
+	}
+	while (!done && stored < want && emitted < maxp) {
+		uint64_t base = emitted;
+		#pragma omp parallel for schedule(dynamic, 1)
+		for (int ci = 0; ci < BATCH; ci++) {
+			chunk *c = &ch[ci];
+			c->n = 0;
+			memset(c->count, 0, sizeof c->count);
+			for (int j = 0; j < CHUNK; j++)
+				trace_path(s, a, L, o, base + (uint64_t)ci * CHUNK + j, c, &c->count[j]);
+		}
+		/* Keep paths in index order until the n-th photon is stored. */
+		for (int ci = 0; ci < BATCH && !done; ci++) {
+			chunk *c = &ch[ci];
+			size_t at = 0;
+			oom |= c->oom;
+			for (int j = 0; j < CHUNK && !done; j++) {
+				emitted++;
+				for (uint32_t q = 0; q < c->count[j]; q++, at++) {
+					if (stored < want)
+						all[stored++] = c->p[at];
+				}
+				if (stored >= want || emitted >= maxp)
+					done = 1;
+			}
+		}
+	}
+	for (int ci = 0; ci < BATCH; ci++)
+		free(ch[ci].p);
+	free(ch);
+	if (oom) {
+		free(all);
+		return pm_seterr(err, "out of memory while shooting photons");
+	}
+	for (uint64_t i = 0; i < stored; i++)
+		for (int k = 0; k < 3; k++) {
+			lo[k] = fminf(lo[k], all[i].pos[k]);
+			hi[k] = fmaxf(hi[k], all[i].pos[k]);
+		}
+	out->p = all;
+	out->h.version = PM_PHOTONS_VERSION;
+	out->h.kdtree = 0;
+	out->h.count = stored;
+	out->h.emitted = emitted;
+	for (int k = 0; k < 3; k++) {
+		out->h.bbox[k] = stored ? lo[k] : 0;
+		out->h.bbox[3 + k] = stored ? hi[k] : 0;
+	}
+	out->h.scene_hash = s->hash;
+	out->h.time = o->time;
+	snprintf(out->h.seeds, sizeof out->h.seeds, "%llu", (unsigned long long)o->seed);
+	return 0;
+}

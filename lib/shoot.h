@@ -1,0 +1,35 @@
+/* shoot.h — the light pass (paper §2): photons from the lights, traced with
+ * Russian roulette, stored at every diffuse or soft-glossy hit after the
+ * first bounce (direct light comes from shadow rays in the view pass).
+ *
+ * Light path i draws its random numbers from pm_rng_seed(seed', i) only, and
+ * paths are kept in index order, so the photons are a function of the scene,
+ * time, seed and count, never of the thread count. */
+#ifndef PM_SHOOT_H
+#define PM_SHOOT_H
+
+#include <stdint.h>
+
+#include "accel.h"
+#include "err.h"
+#include "light.h"
+#include "photon.h"
+#include "scene.h"
+
+typedef struct pm_shoot_opts {
+	uint64_t nphotons;  /* photons to store */
+	uint64_t seed;
+	float time;         /* shutter time the accel and lights were built at */
+	int max_bounces;    /* hard cap on a path's length; 0 means 256 */
+	uint64_t max_paths; /* give up after this many paths; 0 means 64 n + 2^20 */
+} pm_shoot_opts;
+
+/* Fills out (photons, header: count, emitted, bbox, scene hash, time, seed).
+ * Stops after the path that stores the n-th photon; the photons it would
+ * have stored later are dropped and every path begun is counted as emitted.
+ * If max_paths is reached first the file holds fewer photons; that is not
+ * an error (some scenes store few photons) and shows as count < n. */
+int pm_shoot(const pm_scene *s, const pm_accel *a, const pm_lights *L,
+             const pm_shoot_opts *o, pm_photons *out, pm_error *err);
+
+#endif

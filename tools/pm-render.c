@@ -1,0 +1,167 @@
+/* pm-render — the view pass: a scene and its photon map to an EXR image. */
+#define _GNU_SOURCE
+#include <getopt.h>
+#include <inttypes.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "accel.h"
+#include "estimate.h"
+#include "image.h"
+#include "light.h"
+#include "photon.h"
+#include "render.h"
+#include "scene.h"
+#include "util.h"
+
+static const char usage[] =
+	"pm-render SCENE [MAP|-] [-e classical|compensated|path] [-k K] [-p SAMPLES] "
+	"[-s SEED] [-t TIME] [-j THREADS] [--force] -o OUT.exr";
+
+_Noreturn static void
+help(void)
+{
+	printf("usage: %s\n"
+	       "Renders SCENE's view pass with photon map MAP (- for stdin) to an EXR (formats/image.md).\n"
+	       "  -e EST      estimator: classical, compensated or path (default compensated);\n"
+	       "              path is an unbiased path tracer and needs no MAP\n"
+	       "  -j THREADS  threads, 0 for all cores (default 0); the output does not depend on it\n"
+	       "  -k K        nearest photons per estimate (default 50)\n"
+	       "  -o OUT.exr  output image (required)\n"
+	       "  -p SAMPLES  camera samples per pixel (default 4)\n"
+	       "  -s SEED     random seed (default 0)\n"
+	       "  -t TIME     shutter time in [0,1] (default: the map's time, else 0)\n"
+	       "  --force     render even if MAP was made from another scene or time\n"
+	       "  -h          this help\n", usage);
+	exit(0);
+}
+
+static void
+setattr(pm_image *img, const char *k, const char *v)
+{
+	pm_error err;
+
+	if (pm_image_set_attr(img, k, v, &err) != 0)
+		die_err(&err);
+}
+
+int
+main(int argc, char **argv)
+{
+	static const struct option longopts[] = {
+		{"force", no_argument, NULL, 'F'},
+		{"help", no_argument, NULL, 'h'},
+		{0, 0, 0, 0},
+	};
+	pm_render_opts o = {.estimator = PM_EST_COMPENSATED, .k = 50, .spp = 4};
+	const char *out = NULL, *mapname = NULL;
+	int c, threads = 0, force = 0, have_time = 0;
+	float time = 0;
+	pm_scene s;
+	pm_photons map = {0};
+	pm_vec3 *verts;
+	pm_accel *a;
+	pm_lights L;
+	pm_polyindex *pi = NULL;
+	pm_image img;
+	pm_error err;
+	char buf[64], *hist;
+
+	util_init(argc, argv);
+	while ((c = getopt_long(argc, argv, "e:hj:k:o:p:s:t:", longopts, NULL)) != -1) {
+		switch (c) {
+		case 'e':
+			if ((o.estimator = pm_estimator_parse(optarg)) < 0)
+				usage_err(usage, "-e: unknown estimator '%s'", optarg);
+			break;
+		case 'F': force = 1; break;
+		case 'h': help();
+		case 'j': threads = (int)parse_int(optarg, 0, 4096, "-j", usage); break;
+		case 'k': o.k = (int)parse_int(optarg, 1, 100000, "-k", usage); break;
+		case 'o': out = optarg; break;
+		case 'p': o.spp = (int)parse_int(optarg, 1, 1 << 20, "-p", usage); break;
+		case 's': o.seed = parse_u64(optarg, "-s", usage); break;
+		case 't': time = (float)parse_real(optarg, 0, 1, "-t", usage); have_time = 1; break;
+		default: usage_err(usage, "unknown option");
+		}
+	}
+	if (argc - optind < 1)
+		usage_err(usage, "no scene given");
+	if (argc - optind > 2)
+		usage_err(usage, "too many arguments");
+	if (argc - optind == 2)
+		mapname = argv[optind + 1];
+	if (!mapname && o.estimator != PM_EST_PATH)
+		usage_err(usage, "the %s estimate needs a photon map (or use -e path)",
+		          pm_estimator_name(o.estimator));
+	if (!out)
+		usage_err(usage, "no output given (-o OUT.exr)");
+	set_threads(threads);
+
+	if (pm_scene_load(&s, argv[optind], &err) != 0)
+		die_err(&err);
+	if (mapname) {
+		FILE *f = strcmp(mapname, "-") == 0 ? stdin : fopen(mapname, "rb");
+		if (!f)
+			die("cannot open '%s': %m", mapname);
+		if (pm_photons_read(&map, f, mapname, &err) != 0)
+			die_err(&err);
+		if (f != stdin)
+			fclose(f);
+		if (!map.h.kdtree)
+			die("'%s': a photon file, not a photon map: run it through pm-build", mapname);
+		if (map.h.scene_hash != s.hash && !force)
+			die("'%s': photon map of another scene (hash %016" PRIx64 ", '%s' is %016" PRIx64 "); --force to use it",
+			    mapname, map.h.scene_hash, argv[optind], s.hash);
+		if (have_time && map.h.time != time && !force)
+			die("'%s': photon map is of time %g, not %g; --force to use it", mapname, map.h.time, time);
+		if (!have_time)
+			time = (float)map.h.time;
+	}
+	verts = malloc((s.nverts ? s.nverts : 1) * sizeof *verts);
+	if (!verts)
+		die("out of memory");
+	pm_scene_verts_at(&s, time, verts);
+	if (pm_accel_build(&a, &s, verts, &err) != 0 || pm_lights_build(&L, &s, verts, time, &err) != 0)
+		die_err(&err);
+	if (o.estimator == PM_EST_COMPENSATED && pm_polyindex_build(&pi, &s, verts, &err) != 0)
+		die_err(&err);
+	if (pm_render(&s, a, &L, mapname ? &map : NULL, pi, &o, &img, &err) != 0)
+		die_err(&err);
+
+	hist = malloc((map.h.history ? strlen(map.h.history) : 0) + strlen(cmdline()) + 2);
+	if (!hist)
+		die("out of memory");
+	sprintf(hist, "%s%s%s", map.h.history ? map.h.history : "",
+	        map.h.history && *map.h.history ? "\n" : "", cmdline());
+	setattr(&img, "pm.command", hist);
+	free(hist);
+	snprintf(buf, sizeof buf, "%" PRIu64, o.seed);
+	setattr(&img, "pm.seed", buf);
+	snprintf(buf, sizeof buf, "%.9g", time);
+	setattr(&img, "pm.time", buf);
+	setattr(&img, "pm.passes", "1");
+	snprintf(buf, sizeof buf, "%d", o.spp);
+	setattr(&img, "pm.spp", buf);
+	snprintf(buf, sizeof buf, "%" PRIu64, map.h.count);
+	setattr(&img, "pm.photons", buf);
+	snprintf(buf, sizeof buf, "%" PRIu64, map.h.emitted);
+	setattr(&img, "pm.emitted", buf);
+	snprintf(buf, sizeof buf, "%016" PRIx64, s.hash);
+	setattr(&img, "pm.scene_hash", buf);
+	setattr(&img, "pm.estimator", pm_estimator_name(o.estimator));
+	snprintf(buf, sizeof buf, "%d", o.k);
+	setattr(&img, "pm.k", buf);
+	if (pm_image_write_exr(&img, out, &err) != 0)
+		die_err(&err);
+
+	pm_image_free(&img);
+	pm_polyindex_free(pi);
+	pm_lights_free(&L);
+	pm_accel_free(a);
+	free(verts);
+	pm_photons_free(&map);
+	pm_scene_free(&s);
+	return 0;
+}

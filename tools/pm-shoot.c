@@ -1,0 +1,98 @@
+/* pm-shoot — the light pass: photons from a scene's lights to a photon file. */
+#define _GNU_SOURCE
+#include <getopt.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "accel.h"
+#include "atomic.h"
+#include "light.h"
+#include "photon.h"
+#include "scene.h"
+#include "shoot.h"
+#include "util.h"
+
+static const char usage[] =
+	"pm-shoot SCENE [-n PHOTONS] [-s SEED] [-t TIME] [-j THREADS] [-o FILE|-] [-q]";
+
+_Noreturn static void
+help(void)
+{
+	printf("usage: %s\n"
+	       "Traces photons from the lights of SCENE and writes a photon file (formats/photons.md).\n"
+	       "  -n PHOTONS  photons to store (default 200000)\n"
+	       "  -o FILE     output file, - for stdout (default -)\n"
+	       "  -q          quiet: no warnings\n"
+	       "  -s SEED     random seed (default 0)\n"
+	       "  -t TIME     shutter time in [0,1] for moving objects (default 0)\n"
+	       "  -j THREADS  threads, 0 for all cores (default 0); the output does not depend on it\n"
+	       "  -h          this help\n", usage);
+	exit(0);
+}
+
+int
+main(int argc, char **argv)
+{
+	pm_shoot_opts o = {.nphotons = 200000};
+	const char *out = "-";
+	int c, threads = 0, quiet = 0;
+	pm_scene s;
+	pm_vec3 *verts;
+	pm_accel *a;
+	pm_lights L;
+	pm_photons ph;
+	pm_out fo;
+	pm_error err;
+
+	util_init(argc, argv);
+	while ((c = getopt(argc, argv, "hj:n:o:qs:t:")) != -1) {
+		switch (c) {
+		case 'h': help();
+		case 'j': threads = (int)parse_int(optarg, 0, 4096, "-j", usage); break;
+		case 'n': o.nphotons = (uint64_t)parse_int(optarg, 0, 4000000000LL, "-n", usage); break;
+		case 'o': out = optarg; break;
+		case 'q': quiet = 1; break;
+		case 's': o.seed = parse_u64(optarg, "-s", usage); break;
+		case 't': o.time = (float)parse_real(optarg, 0, 1, "-t", usage); break;
+		default: usage_err(usage, "unknown option");
+		}
+	}
+	if (argc - optind != 1)
+		usage_err(usage, argc - optind == 0 ? "no scene given" : "too many arguments");
+	if (strcmp(out, "-") == 0 && isatty(1))
+		die("refusing to write binary photons to a terminal: use -o FILE or a pipe");
+	set_threads(threads);
+
+	if (pm_scene_load(&s, argv[optind], &err) != 0)
+		die_err(&err);
+	verts = malloc((s.nverts ? s.nverts : 1) * sizeof *verts);
+	if (!verts)
+		die("out of memory");
+	pm_scene_verts_at(&s, o.time, verts);
+	if (pm_accel_build(&a, &s, verts, &err) != 0 || pm_lights_build(&L, &s, verts, o.time, &err) != 0)
+		die_err(&err);
+	if (pm_shoot(&s, a, &L, &o, &ph, &err) != 0)
+		die_err(&err);
+	if (ph.h.count < o.nphotons && !quiet)
+		warn("'%s': only %llu of %llu photons stored after %llu light paths",
+		     argv[optind], (unsigned long long)ph.h.count,
+		     (unsigned long long)o.nphotons, (unsigned long long)ph.h.emitted);
+	if (pm_photons_add_history(&ph, cmdline(), &err) != 0)
+		die_err(&err);
+	if (pm_out_open(&fo, out, &err) != 0)
+		die_err(&err);
+	if (pm_photons_write(&ph, fo.f, fo.path, &err) != 0) {
+		pm_out_abort(&fo);
+		die_err(&err);
+	}
+	if (pm_out_commit(&fo, &err) != 0)
+		die_err(&err);
+	pm_photons_free(&ph);
+	pm_lights_free(&L);
+	pm_accel_free(a);
+	free(verts);
+	pm_scene_free(&s);
+	return 0;
+}
