@@ -1,0 +1,588 @@
+/* test_scene.c — the scene loader: shapes, normals, transforms, meshes through
+ * OpenMesh, triangulation, motion, the scene hash, error messages, and the
+ * bundled example scenes. Scenes are written to a private temporary directory. */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "check.h"
+#include "scene.h"
+
+static char dir[64];
+
+/* Writes text to dir/name and returns the full path (static buffer ring). */
+static const char *
+put(const char *name, const char *text)
+{
+	static char paths[8][256];
+	static int k;
+	char *path = paths[k++ % 8];
+	snprintf(path, 256, "%s/%s", dir, name);
+	FILE *f = fopen(path, "wb");
+	if (!f) {
+		perror(path);
+		exit(1);
+	}
+	fputs(text, f);
+	fclose(f);
+	return path;
+}
+
+#define CAMERA "camera eye 0 0 10 look 0 0 0 up 0 1 0 fov 40 size 64 48\n"
+#define LIGHT "pointlight 0 5 0 power 10 10 10\n"
+#define WHITE "material white diffuse albedo 0.5 0.5 0.5\n"
+#define HEAD CAMERA LIGHT WHITE
+/* A unit cube of six quads, counter-clockwise seen from outside. */
+#define CUBE_OBJ "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nv 0 0 1\nv 1 0 1\nv 0 1 1\nv 1 1 1\n" \
+	"f 1 5 7 3\nf 2 4 8 6\nf 1 2 6 5\nf 3 7 8 4\nf 1 3 4 2\nf 5 6 8 7\n"
+
+/* Loads a scene made of HEAD and body; fails the test if it does not load. */
+static int
+load(pm_scene *s, const char *body)
+{
+	char text[8192];
+	pm_error err = {""};
+	snprintf(text, sizeof text, "%s%s", HEAD, body);
+	int r = pm_scene_load(s, put("t.pms", text), &err);
+	CHECKF(r == 0, "load failed: %s", err.msg);
+	return r;
+}
+
+static pm_vec3
+centroid(const pm_scene *s, uint32_t poly)
+{
+	pm_vec3 c = pm_v3(0, 0, 0);
+	uint32_t a = s->poly_start[poly], b = s->poly_start[poly + 1];
+	for (uint32_t i = a; i < b; i++)
+		c = pm_add(c, s->verts[s->poly_vert[i]]);
+	return pm_scale(c, 1.0f / (float)(b - a));
+}
+
+static double
+tri_area(const pm_scene *s, uint32_t t)
+{
+	pm_vec3 a = s->verts[s->tris[t][0]], b = s->verts[s->tris[t][1]], c = s->verts[s->tris[t][2]];
+	return 0.5 * pm_len(pm_cross(pm_sub(b, a), pm_sub(c, a)));
+}
+
+/* Signed: positive when the triangle winds like its polygon. */
+static double
+tri_area_along(const pm_scene *s, uint32_t t)
+{
+	pm_vec3 a = s->verts[s->tris[t][0]], b = s->verts[s->tris[t][1]], c = s->verts[s->tris[t][2]];
+	return 0.5 * pm_dot(pm_cross(pm_sub(b, a), pm_sub(c, a)), s->poly_normal[s->tri_poly[t]]);
+}
+
+static int
+near3(pm_vec3 a, pm_vec3 b, float tol)
+{
+	return fabsf(a.x - b.x) <= tol && fabsf(a.y - b.y) <= tol && fabsf(a.z - b.z) <= tol;
+}
+
+/* Every polygon of object o faces away from (sign +1) or toward (-1) point c. */
+static int
+faces_from(const pm_scene *s, int o, pm_vec3 c, int sign)
+{
+	const pm_object *ob = &s->objs[o];
+	for (uint32_t i = ob->first_poly; i < ob->first_poly + ob->npolys; i++)
+		if (sign * pm_dot(s->poly_normal[i], pm_sub(centroid(s, i), c)) <= 0)
+			return 0;
+	return 1;
+}
+
+TEST(quad_normal_and_triangles)
+{
+	pm_scene s;
+	if (load(&s, "quad white 0 0 0  2 0 0  2 1 0  0 1 0\ntriangle white 0 0 1  0 1 1  1 0 1\n"))
+		return;
+	CHECK(s.nobjs == 2 && s.npolys == 2 && s.ntris == 3 && s.nverts == 7);
+	CHECK(s.objs[1].solid == 0 && s.poly_start[2] == 7);
+	CHECK(near3(s.poly_normal[1], pm_v3(0, 0, -1), 1e-6f));
+	CHECK(s.poly_start[1] - s.poly_start[0] == 4);
+	CHECKF(near3(s.poly_normal[0], pm_v3(0, 0, 1), 1e-6f), "n=(%g %g %g)",
+		s.poly_normal[0].x, s.poly_normal[0].y, s.poly_normal[0].z);
+	CHECK(s.objs[0].solid == 0);
+	double area = 0;
+	CHECK(s.tri_poly[2] == 1);
+	for (uint32_t t = 0; t < 2; t++) {
+		CHECK(s.tri_poly[t] == 0);
+		CHECKF(tri_area_along(&s, t) > 0, "triangle %u winds backward", t);
+		area += tri_area(&s, t);
+	}
+	CHECKF(fabs(area - 2) < 1e-6, "area %g", area);
+	CHECK(s.camera.width == 64 && s.camera.height == 48 && s.camera.fov == 40);
+	CHECK(s.camera.eye.z == 10 && s.camera.up.y == 1);
+	CHECK(s.nlights == 1 && s.lights[0].power.x == 10 && s.lights[0].pos.y == 5);
+	pm_scene_free(&s);
+}
+
+TEST(box_outward_and_inward)
+{
+	pm_scene s;
+	if (load(&s, "box white -1 -2 -3 1 2 3\nbox white 10 10 10 12 12 12 inward\n"))
+		return;
+	CHECK(s.nobjs == 2 && s.npolys == 12 && s.ntris == 24);
+	CHECK(s.objs[0].solid == 1 && s.objs[1].solid == 1);
+	for (uint32_t i = 0; i < s.npolys; i++)
+		CHECK(s.poly_start[i + 1] - s.poly_start[i] == 4);
+	CHECK(faces_from(&s, 0, pm_v3(0, 0, 0), 1));
+	CHECK(faces_from(&s, 1, pm_v3(11, 11, 11), -1));
+	/* Each face's normal is a unit axis vector. */
+	for (uint32_t i = 0; i < s.npolys; i++)
+		CHECKF(fabsf(pm_maxc(pm_mul(s.poly_normal[i], s.poly_normal[i])) - 1) < 1e-6f,
+			"face %u normal not axis-aligned", i);
+	for (uint32_t t = 0; t < s.ntris; t++)
+		CHECK(tri_area_along(&s, t) > 0);
+	pm_scene_free(&s);
+}
+
+TEST(rotate_maps_x_to_y)
+{
+	pm_scene s;
+	/* A quad facing +x through (1, 0, 0), turned 90 degrees about z. */
+	if (load(&s, "quad white 1 0 0  1 1 0  1 1 1  1 0 1  rotate 0 0 1 90\n"))
+		return;
+	CHECKF(near3(s.verts[0], pm_v3(0, 1, 0), 1e-6f), "(%g %g %g)", s.verts[0].x, s.verts[0].y, s.verts[0].z);
+	CHECK(near3(s.verts[1], pm_v3(-1, 1, 0), 1e-6f));
+	CHECKF(near3(s.poly_normal[0], pm_v3(0, 1, 0), 1e-6f), "n=(%g %g %g)",
+		s.poly_normal[0].x, s.poly_normal[0].y, s.poly_normal[0].z);
+	pm_scene_free(&s);
+}
+
+TEST(transforms_apply_in_order)
+{
+	pm_scene s;
+	if (load(&s, "quad white 1 0 0  2 0 0  2 1 0  1 1 0  scale 2 translate 1 0 0\n"
+		     "quad white 1 0 0  2 0 0  2 1 0  1 1 0  translate 1 0 0 scale 2\n"
+		     "quad white 1 0 0  2 0 0  2 1 0  1 1 0  scale 1 2 3 translate 0 0 5\n"))
+		return;
+	CHECK(near3(s.verts[0], pm_v3(3, 0, 0), 1e-6f));
+	CHECK(near3(s.verts[4], pm_v3(4, 0, 0), 1e-6f));
+	CHECK(near3(s.verts[10], pm_v3(2, 2, 5), 1e-6f));
+	pm_scene_free(&s);
+}
+
+TEST(mirroring_scale_keeps_normals_outward)
+{
+	pm_scene s;
+	if (load(&s, "box white 1 1 1 2 3 4 scale -1 1 1\n"
+		     "box white 1 1 1 2 3 4 scale -1\n"
+		     "box white 0 0 0 1 1 1 inward scale 1 -2 1\n"
+		     "quad white 0 0 0  1 0 0  1 1 0  0 1 0 scale 1 1 -1\n"))
+		return;
+	CHECK(faces_from(&s, 0, pm_v3(-1.5f, 2, 2.5f), 1));
+	CHECK(faces_from(&s, 1, pm_v3(-1.5f, -2, -2.5f), 1));
+	CHECK(faces_from(&s, 2, pm_v3(0.5f, -1, 0.5f), -1));
+	/* Normals transform by the inverse transpose: mirroring a sheet
+	 * through its own plane turns its front from +z to -z. */
+	CHECK(near3(s.poly_normal[18], pm_v3(0, 0, -1), 1e-6f));
+	for (uint32_t t = 0; t < s.ntris; t++)
+		CHECK(tri_area_along(&s, t) > 0);
+	pm_scene_free(&s);
+}
+
+TEST(sphere_area_and_normals)
+{
+	pm_scene s;
+	double prev_err = 1;
+	for (int sub = 2; sub <= 6; sub += 2) {
+		char body[256];
+		snprintf(body, sizeof body, "sphere white 1 2 3 2 subdiv %d\n", sub);
+		if (load(&s, body))
+			return;
+		uint32_t bands = 2u << sub;
+		CHECK(s.objs[0].solid == 1);
+		CHECKF(s.npolys == 2 * bands * bands, "subdiv %d: %u polygons", sub, s.npolys);
+		double area = 0;
+		for (uint32_t t = 0; t < s.ntris; t++)
+			area += tri_area(&s, t);
+		double want = 4 * PM_PI * 4, err = (want - area) / want;
+		/* Inscribed: a little less than the sphere, converging as
+		 * O(h^2) with the band width h. */
+		CHECKF(err > 0 && err < 0.5 * pow(PM_PI / bands, 2) * 2, "subdiv %d: area %g of %g", sub, area, want);
+		CHECKF(err < prev_err / 8, "subdiv %d: error %g after %g", sub, err, prev_err);
+		prev_err = err;
+		CHECK(faces_from(&s, 0, pm_v3(1, 2, 3), 1));
+		for (uint32_t i = 0; i < s.nverts; i++)
+			CHECK(fabsf(pm_len(pm_sub(s.verts[i], pm_v3(1, 2, 3))) - 2) < 1e-5f);
+		pm_scene_free(&s);
+	}
+}
+
+TEST(obj_cube_closed_quads)
+{
+	pm_scene s;
+	put("cube.obj", CUBE_OBJ);
+	if (load(&s, "mesh cube.obj white translate 5 0 0\n"))
+		return;
+	CHECK(s.nobjs == 1 && s.objs[0].solid == 1);
+	CHECK(s.npolys == 6 && s.ntris == 12 && s.nverts == 8);
+	for (uint32_t i = 0; i < s.npolys; i++)
+		CHECK(s.poly_start[i + 1] - s.poly_start[i] == 4);
+	CHECK(faces_from(&s, 0, pm_v3(5.5f, 0.5f, 0.5f), 1));
+	pm_scene_free(&s);
+}
+
+TEST(off_and_ply_read)
+{
+	pm_scene s;
+	/* The same cube as CUBE_OBJ, 0-based, in OFF and ASCII PLY. */
+	static const char *const body = "8 6 0\n0 0 0\n1 0 0\n0 1 0\n1 1 0\n0 0 1\n1 0 1\n0 1 1\n1 1 1\n"
+		"4 0 4 6 2\n4 1 3 7 5\n4 0 1 5 4\n4 2 6 7 3\n4 0 2 3 1\n4 4 5 7 6\n";
+	char text[1024];
+	snprintf(text, sizeof text, "OFF\n%s", body);
+	put("cube.off", text);
+	put("cube.ply", "ply\nformat ascii 1.0\nelement vertex 8\nproperty float x\nproperty float y\n"
+		"property float z\nelement face 6\nproperty list uchar int vertex_indices\nend_header\n"
+		"0 0 0\n1 0 0\n0 1 0\n1 1 0\n0 0 1\n1 0 1\n0 1 1\n1 1 1\n"
+		"4 0 4 6 2\n4 1 3 7 5\n4 0 1 5 4\n4 2 6 7 3\n4 0 2 3 1\n4 4 5 7 6\n");
+	if (load(&s, "mesh cube.off white\nmesh cube.ply white translate 2 0 0\n"))
+		return;
+	CHECK(s.nobjs == 2 && s.objs[0].solid == 1 && s.objs[1].solid == 1);
+	CHECK(s.npolys == 12 && s.poly_start[12] == 48);
+	CHECK(faces_from(&s, 0, pm_v3(0.5f, 0.5f, 0.5f), 1));
+	CHECK(faces_from(&s, 1, pm_v3(2.5f, 0.5f, 0.5f), 1));
+	pm_scene_free(&s);
+}
+
+TEST(obj_open_plane_is_sheet)
+{
+	pm_scene s;
+	put("plane.obj", "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3\nf 1 3 4\n");
+	if (load(&s, "mesh plane.obj white\n"))
+		return;
+	CHECK(s.nobjs == 1 && s.objs[0].solid == 0);
+	CHECK(s.npolys == 2 && s.ntris == 2);
+	CHECK(near3(s.poly_normal[0], pm_v3(0, 0, 1), 1e-6f));
+	pm_scene_free(&s);
+}
+
+TEST(obj_degenerate_faces_dropped)
+{
+	pm_scene s;
+	put("degen.obj",
+		"v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 2 0 0\nv 1 0 0\n"
+		"f 1 2 3\n"        /* fine */
+		"f 1 3 4\n"        /* fine */
+		"f 1 2 5\n"        /* collinear: no area */
+		"f 1 1 2\n"        /* a repeated index: two distinct vertices */
+		"f 2 6 3\n"        /* 2 and 6 are the same point: an edge */
+		"f 1 2 2 3\n"      /* a repeat in a row: a triangle */
+		"f 1 2 6 3 4\n");  /* same point in a row: a quad */
+	if (load(&s, "mesh degen.obj white\n"))
+		return;
+	CHECKF(s.npolys == 4, "%u polygons", s.npolys);
+	CHECK(s.poly_start[3] - s.poly_start[2] == 3);
+	CHECK(s.poly_start[4] - s.poly_start[3] == 4);
+	for (uint32_t i = 0; i < s.npolys; i++)
+		CHECK(pm_vfinite(s.poly_normal[i]) && near3(s.poly_normal[i], pm_v3(0, 0, 1), 1e-6f));
+	pm_scene_free(&s);
+}
+
+TEST(concave_polygon_ear_clipping)
+{
+	pm_scene s;
+	/* An L of area 3, starting at a corner from which a fan would leave
+	 * the polygon. */
+	put("ell.obj", "v 2 1 0\nv 1 1 0\nv 1 2 0\nv 0 2 0\nv 0 0 0\nv 2 0 0\nf 1 2 3 4 5 6\n");
+	if (load(&s, "mesh ell.obj white\n"))
+		return;
+	CHECK(s.npolys == 1 && s.poly_start[1] == 6);
+	CHECKF(s.ntris == 4, "%u triangles", s.ntris);
+	double sum = 0;
+	for (uint32_t t = 0; t < s.ntris; t++) {
+		CHECKF(tri_area_along(&s, t) > 0, "triangle %u winds backward", t);
+		sum += tri_area(&s, t);
+	}
+	CHECKF(fabs(sum - 3) < 1e-6, "triangles cover %g, want 3", sum);
+	pm_scene_free(&s);
+}
+
+TEST(nonplanar_face_split)
+{
+	pm_scene s;
+	put("bent.obj", "v 0 0 0\nv 1 0 0\nv 1 1 0.5\nv 0 1 0\nf 1 2 3 4\n");
+	if (load(&s, "mesh bent.obj white\n"))
+		return;
+	CHECK(s.npolys == 2 && s.ntris == 2);
+	for (uint32_t i = 0; i < s.npolys; i++)
+		CHECK(s.poly_start[i + 1] - s.poly_start[i] == 3 && s.poly_normal[i].z > 0.5f);
+	pm_scene_free(&s);
+}
+
+TEST(motion)
+{
+	pm_scene s;
+	if (load(&s, "box white 0 0 0 1 1 1 move 2 4 6\nquad white 0 0 0  1 0 0  1 1 0  0 1 0\n"
+		     "pointlight 1 1 1 power 1 1 1 move 0 0 -2\n"))
+		return;
+	pm_vec3 *v = malloc(s.nverts * sizeof *v);
+	pm_scene_verts_at(&s, 0.5f, v);
+	for (uint32_t i = 0; i < 8; i++)
+		CHECK(near3(v[i], pm_add(s.verts[i], pm_v3(1, 2, 3)), 1e-6f));
+	for (uint32_t i = 8; i < s.nverts; i++)
+		CHECK(near3(v[i], s.verts[i], 0));
+	pm_scene_verts_at(&s, 0, v);
+	CHECK(near3(v[0], s.verts[0], 0));
+	CHECK(near3(pm_scene_light_at(&s, 1, 0.25f), pm_v3(1, 1, 0.5f), 1e-6f));
+	CHECK(near3(pm_scene_light_at(&s, 0, 1), pm_v3(0, 5, 0), 0));
+	free(v);
+	pm_scene_free(&s);
+}
+
+TEST(materials_strong_and_soft)
+{
+	pm_scene s;
+	if (load(&s, "material shiny glossy kd 0.2 0.2 0.2 ks 0.7 0.7 0.7 exponent 200\n"
+		     "material satin glossy exponent 20 ks 0.3 0.3 0.3 kd 0.5 0.5 0.5\n"
+		     "material m mirror reflect 0.9 0.9 0.9\n"
+		     "material g glass ior 1.5\n"
+		     "material lamp diffuse albedo 0 0 0 emit 5 4 3 twosided\n"))
+		return;
+	CHECK(s.nmats == 6 && s.glossy_threshold == 100);
+	CHECK(!s.mats[0].strong && pm_mat_is_photon_surface(&s.mats[0]));
+	CHECK(s.mats[1].strong && s.mats[1].kind == PM_MAT_GLOSSY && s.mats[1].exponent == 200);
+	CHECK(!s.mats[2].strong && s.mats[2].kd.x == 0.5f && s.mats[2].ks.x == 0.3f);
+	CHECK(s.mats[3].strong && s.mats[3].ks.y == 0.9f);
+	CHECK(s.mats[4].strong && s.mats[4].ior == 1.5f && s.mats[4].ks.z == 1);
+	CHECK(!s.mats[5].strong && s.mats[5].emit.x == 5 && s.mats[5].emit_twosided);
+	pm_scene_free(&s);
+	if (load(&s, "glossy_threshold 10\nmaterial satin glossy kd 0.5 0.5 0.5 ks 0.3 0.3 0.3 exponent 20\n"))
+		return;
+	CHECK(s.glossy_threshold == 10 && s.mats[1].strong);
+	pm_scene_free(&s);
+}
+
+static uint64_t
+fnv(uint64_t h, const char *path)
+{
+	FILE *f = fopen(path, "rb");
+	int c;
+	while (f && (c = getc(f)) != EOF)
+		h = (h ^ (unsigned char)c) * 1099511628211ull;
+	if (f)
+		fclose(f);
+	return h;
+}
+
+TEST(hash)
+{
+	pm_scene s;
+	pm_error err;
+	const char *text = HEAD "mesh plane.obj white\nmesh cube.obj white translate 3 0 0\n";
+	const char *path;
+	uint64_t h1, h2, h3;
+
+	put("plane.obj", "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3\nf 1 3 4\n");
+	put("cube.obj", CUBE_OBJ);
+	path = put("h.pms", text);
+	if (pm_scene_load(&s, path, &err)) {
+		CHECKF(0, "%s", err.msg);
+		return;
+	}
+	h1 = s.hash;
+	char p1[300], p2[300];
+	snprintf(p1, sizeof p1, "%s/plane.obj", dir);
+	snprintf(p2, sizeof p2, "%s/cube.obj", dir);
+	uint64_t want = fnv(fnv(fnv(14695981039346656037ull, path), p1), p2);
+	CHECKF(h1 == want, "hash %016llx, want %016llx", (unsigned long long)h1, (unsigned long long)want);
+	pm_scene_free(&s);
+
+	put("plane.obj", "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3\nf 1 3 4\n# changed\n");
+	CHECK(pm_scene_load(&s, path, &err) == 0);
+	h2 = s.hash;
+	pm_scene_free(&s);
+	CHECK(h2 != h1);
+
+	char t2[4096];
+	snprintf(t2, sizeof t2, "%s# a comment\n", text);
+	path = put("h.pms", t2);
+	CHECK(pm_scene_load(&s, path, &err) == 0);
+	h3 = s.hash;
+	pm_scene_free(&s);
+	CHECK(h3 != h2 && h3 != h1);
+	CHECK(pm_scene_load(&s, path, &err) == 0 && s.hash == h3);
+	pm_scene_free(&s);
+}
+
+/* Each malformed scene must fail with exactly "FILE:LINE: " and a message
+ * containing want. */
+static void
+bad(const char *text, int line, const char *want)
+{
+	pm_scene s;
+	pm_error err = {""};
+	const char *path = put("bad.pms", text);
+	char prefix[300];
+	snprintf(prefix, sizeof prefix, "%s:%d: ", path, line);
+	int r = pm_scene_load(&s, path, &err);
+	CHECKF(r == -1, "loaded, want '%s'", want);
+	CHECKF(!strncmp(err.msg, prefix, strlen(prefix)) && strstr(err.msg, want),
+		"got '%s', want '%s...%s'", err.msg, prefix, want);
+	CHECK(s.nobjs == 0 && s.npolys == 0 && s.verts == NULL && s.path == NULL);
+}
+
+TEST(malformed_scenes)
+{
+	bad(HEAD "qaud white 0 0 0 1 0 0 1 1 0 0 1 0\n", 4, "unknown statement 'qaud'");
+	bad("camera eye 0 0 look 0 0 0 up 0 1 0 fov 40 size 64 48\n", 1,
+		"camera: expected 3 numbers after 'eye'");
+	bad(HEAD "quad white 0 0 0 1 0 0 1 1 0 0 1 nan\n", 4, "quad: 'nan' is not a finite number");
+	bad(HEAD "box white 0 0 0 1 1 1e999\n", 4, "box: number '1e999' out of range");
+	bad(HEAD "box white 0 0 0 1 1 1x\n", 4, "box: expected 6 numbers after the material");
+	bad(HEAD "\n# comment\nbox whte 0 0 0 1 1 1\n", 6, "box: unknown material 'whte'");
+	bad(HEAD "material white diffuse albedo 1 1 1\n", 4, "material: 'white' is defined twice");
+	bad(LIGHT WHITE "box white 0 0 0 1 1 1\n", 3, "no camera");
+	bad(HEAD CAMERA, 4, "camera: a second camera");
+	bad(CAMERA WHITE "box white 0 0 0 1 1 1\n", 3, "no light");
+	bad(CAMERA "material lamp diffuse albedo 0.5 0.5 0.5 emit 1 1 1\n" WHITE "box white 0 0 0 1 1 1\n",
+		4, "no light");
+	bad(CAMERA "material w diffuse albedo 1.2 0.5 0.5\n", 2,
+		"material 'w': albedo must be in [0, 1]");
+	bad(HEAD "material g glossy kd 0.6 0.6 0.6 ks 0.5 0.3 0.3 exponent 10\n", 4,
+		"material 'g': kd + ks exceeds 1");
+	bad(HEAD "material g glossy kd 0.2 0.2 0.2 ks 0.5 0.3 0.3\n", 4, "material 'g': missing 'exponent'");
+	bad(HEAD "material g glass ior 0\n", 4, "material 'g': ior must be > 0");
+	bad(HEAD "mesh nosuch.obj white\n", 4, "nosuch.obj': cannot read mesh: No such file or directory");
+	put("junk.obj", "this is not\na mesh at all\n\x01\x02\x03\n");
+	bad(HEAD "mesh junk.obj white\n", 4, "junk.obj': cannot read mesh: no faces");
+	put("junk.xyz", "v 0 0 0\n");
+	bad(HEAD "mesh junk.xyz white\n", 4, "junk.xyz': cannot read mesh: unknown format");
+	bad("camera eye 0 0 10 look 0 0 0 up 0 1 0 fov 40 size -64 48\n", 1,
+		"camera: size must be whole numbers from 1 to 65535, got -64");
+	bad("camera eye 0 0 10 look 0 0 0 up 0 1 0 fov 180 size 64 48\n", 1,
+		"camera: fov must be between 0 and 180");
+	bad("camera eye 0 0 10 look 0 0 0 up 0 0 1 fov 40 size 64 48\n", 1,
+		"camera: up is zero or parallel");
+	bad("camera eye 0 0 10 look 0 0 0 up 0 1 0 size 64 48\n", 1, "camera: missing 'fov'");
+	bad(HEAD "box white 0 0 0 1 1 1 spin 3\n", 4, "box: unexpected 'spin'");
+	bad(HEAD "box white 1 0 0 0 1 1\n", 4, "box: the first corner must be below");
+	bad(HEAD "quad white 0 0 0 1 0 0 1 1 1 0 1 0\n", 4, "quad: corners are not coplanar");
+	bad(HEAD "quad white 0 0 0 3 2 0 3 0 0 0 1 0\n", 4, "quad: edges cross");
+	bad(HEAD "triangle white 0 0 0 1 1 1 2 2 2\n", 4, "triangle: zero area");
+	bad(HEAD "quad white 0 0 0 1 0 0 2 0 0 3 0 0\n", 4, "quad: zero area");
+	bad(HEAD "sphere white 0 0 0 1 subdiv 11\n", 4, "sphere: subdiv must be a whole number from 1 to 10");
+	bad(HEAD "box white 0 0 0 1 1 1 scale 0\n", 4, "box: scale must not be zero");
+	bad(HEAD "pointlight 0 0 0 power -1 1 1\n", 4, "pointlight: power must be >= 0");
+
+	/* A line longer than the limit. */
+	size_t n = 70000;
+	char *big = malloc(n + 200);
+	strcpy(big, HEAD "# ");
+	size_t l = strlen(big);
+	memset(big + l, 'x', n);
+	strcpy(big + l + n, "\n");
+	bad(big, 4, "line longer than 65536 bytes");
+	free(big);
+
+	/* A file that does not open names the file. */
+	pm_scene s;
+	pm_error err = {""};
+	char path[300];
+	snprintf(path, sizeof path, "%s/none.pms", dir);
+	CHECK(pm_scene_load(&s, path, &err) == -1);
+	CHECKF(strstr(err.msg, "cannot open '") && strstr(err.msg, "none.pms': No such file"), "%s", err.msg);
+}
+
+static void
+example(const char *rel, pm_scene *s, int *ok)
+{
+	const char *top = getenv("PM_TOP");
+	char path[1024];
+	pm_error err = {""};
+	snprintf(path, sizeof path, "%s/%s", top ? top : ".", rel);
+	*ok = pm_scene_load(s, path, &err) == 0;
+	CHECKF(*ok, "%s", err.msg);
+}
+
+TEST(example_cornell)
+{
+	pm_scene s;
+	int ok;
+	example("examples/cornell/cornell.pms", &s, &ok);
+	if (!ok)
+		return;
+	/* Four walls and the light as quads, the warped left wall as two
+	 * triangles, two closed blocks of six quads. */
+	CHECKF(s.npolys == 19, "%u polygons", s.npolys);
+	int quads = 0;
+	for (uint32_t i = 0; i < s.npolys; i++)
+		quads += s.poly_start[i + 1] - s.poly_start[i] == 4;
+	CHECKF(quads == 17, "%d quads", quads);
+	int solids = 0, emitters = 0;
+	for (int o = 0; o < s.nobjs; o++) {
+		solids += s.objs[o].solid;
+		emitters += pm_maxc(s.mats[s.objs[o].material].emit) > 0;
+	}
+	CHECK(solids == 2 && emitters == 1);
+	CHECK(s.camera.width == 256 && s.camera.height == 256 && fabsf(s.camera.fov - 39.3f) < 0.1f);
+	/* The light faces down into the box. */
+	for (int o = 0; o < s.nobjs; o++)
+		if (pm_maxc(s.mats[s.objs[o].material].emit) > 0)
+			CHECK(s.poly_normal[s.objs[o].first_poly].y < -0.999f);
+	pm_scene_free(&s);
+}
+
+TEST(example_room)
+{
+	pm_scene s;
+	int ok;
+	example("examples/room/room.pms", &s, &ok);
+	if (!ok)
+		return;
+	int strong_glossy = 0, glass = 0, meshes_closed = 0, emitters = 0;
+	for (int m = 0; m < s.nmats; m++) {
+		strong_glossy += s.mats[m].kind == PM_MAT_GLOSSY && s.mats[m].strong;
+		glass += s.mats[m].kind == PM_MAT_GLASS;
+	}
+	for (int o = 0; o < s.nobjs; o++) {
+		meshes_closed += s.objs[o].solid;
+		if (pm_maxc(s.mats[s.objs[o].material].emit) > 0) {
+			emitters++;
+			/* The cove strips shine at the ceiling. */
+			CHECK(s.poly_normal[s.objs[o].first_poly].y > 0.999f);
+		}
+	}
+	CHECK(strong_glossy >= 1 && glass == 1 && emitters >= 1);
+	CHECKF(s.nobjs >= 10 && meshes_closed >= 8, "%d objects, %d solid", s.nobjs, meshes_closed);
+	pm_scene_free(&s);
+}
+
+int
+main(void)
+{
+	snprintf(dir, sizeof dir, "/tmp/pm-test-scene-XXXXXX");
+	if (!mkdtemp(dir)) {
+		perror("mkdtemp");
+		return 1;
+	}
+	RUN(quad_normal_and_triangles);
+	RUN(box_outward_and_inward);
+	RUN(rotate_maps_x_to_y);
+	RUN(transforms_apply_in_order);
+	RUN(mirroring_scale_keeps_normals_outward);
+	RUN(sphere_area_and_normals);
+	RUN(obj_cube_closed_quads);
+	RUN(off_and_ply_read);
+	RUN(obj_open_plane_is_sheet);
+	RUN(obj_degenerate_faces_dropped);
+	RUN(concave_polygon_ear_clipping);
+	RUN(nonplanar_face_split);
+	RUN(motion);
+	RUN(materials_strong_and_soft);
+	RUN(hash);
+	RUN(malformed_scenes);
+	RUN(example_cornell);
+	RUN(example_room);
+	static const char *const files[] = {"t.pms", "h.pms", "bad.pms", "cube.obj", "plane.obj",
+		"degen.obj", "ell.obj", "bent.obj", "junk.obj", "junk.xyz", "cube.off", "cube.ply"};
+	char path[300];
+	for (size_t i = 0; i < sizeof files / sizeof files[0]; i++) {
+		snprintf(path, sizeof path, "%s/%s", dir, files[i]);
+		unlink(path);
+	}
+	rmdir(dir);
+	return check_done();
+}
