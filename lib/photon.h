@@ -70,7 +70,18 @@ typedef struct pm_photons {
  * rejects non-finite positions or powers. */
 int pm_photons_read(pm_photons *out, FILE *f, const char *name, pm_error *err);
 
-/* Writes header and records to f. Does not close f. */
+/* The two halves of pm_photons_read, for tools that look at the header alone
+ * (pm-dump --header works on a truncated file) or need its text:
+ * read_header checks and fills out->h (out->p = NULL; release with
+ * pm_photons_free) and leaves f at the first record; if raw is non-NULL,
+ * *raw receives the header bytes as read, blank line included, NUL-terminated
+ * (caller frees). read_records then reads and checks ph->h.count records
+ * and that nothing follows them. */
+int pm_photons_read_header(pm_photons *out, FILE *f, const char *name, char **raw, pm_error *err);
+int pm_photons_read_records(pm_photons *ph, FILE *f, const char *name, pm_error *err);
+
+/* Writes header and records to f. Does not close f. The header's bbox is
+ * computed from the records. */
 int pm_photons_write(const pm_photons *ph, FILE *f, const char *name, pm_error *err);
 
 /* Appends one command line to the history ("pm-shoot -s 7 scene.pms"). */

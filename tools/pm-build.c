@@ -1,0 +1,193 @@
+/* pm-build — merges photon files and builds the balanced kd-tree photon map
+ * (formats/photons.md). Inputs are refused if they come from different
+ * scenes or shutter times unless --force. */
+#define _GNU_SOURCE
+#include <errno.h>
+#include <getopt.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "atomic.h"
+#include "kdtree.h"
+#include "photon.h"
+#include "util.h"
+
+static const char usage[] = "pm-build [-fhq] [-o FILE|-] [FILE ...|-]";
+static const char help[] =
+	"Reads photon files (or maps) and writes one photon map: the records\n"
+	"concatenated, emitted counts summed, then ordered as a balanced kd-tree.\n"
+	"With no FILE, or FILE -, reads stdin.\n"
+	"  -f, --force        merge inputs whose scene hash or time differ (default: refuse)\n"
+	"  -h, --help         print this help and exit\n"
+	"  -o, --output FILE  the photon map to write, - for stdout (default: -)\n"
+	"  -q, --quiet        no warnings (default: warn on forced merges and empty maps)\n";
+
+/* Appends seeds to the merged list; a list that would not fit ends in
+ * ",..." (the command history still names every input's seed). */
+static void
+join_seeds(char *acc, size_t cap, const char *add)
+{
+	size_t n = strlen(acc), m = strlen(add);
+	char *cut;
+
+	if (m == 0)
+		return;
+	if (n >= 4 && strcmp(acc + n - 4, ",...") == 0)
+		return;
+	if (n == 0 && m < cap) {
+		memcpy(acc, add, m + 1);
+		return;
+	}
+	if (n + 1 + m < cap) {
+		acc[n] = ',';
+		memcpy(acc + n + 1, add, m + 1);
+		return;
+	}
+	while (strlen(acc) + 4 >= cap && (cut = strrchr(acc, ',')) != NULL)
+		*cut = 0;
+	if (strlen(acc) + 4 < cap)
+		strcat(acc, ",...");
+}
+
+static const char *
+quoted(const char *name, char *buf, size_t n)
+{
+	if (strcmp(name, "-") == 0)
+		snprintf(buf, n, "stdin");
+	else
+		snprintf(buf, n, "'%s'", name);
+	return buf;
+}
+
+int
+main(int argc, char **argv)
+{
+	static const struct option lopts[] = {
+		{"force", no_argument, NULL, 'f'},
+		{"help", no_argument, NULL, 'h'},
+		{"output", required_argument, NULL, 'o'},
+		{"quiet", no_argument, NULL, 'q'},
+		{NULL, 0, NULL, 0},
+	};
+	static char *stdin_only[] = {"-"};
+	const char *out = "-", *first = NULL;
+	char **in, qa[600], qb[600];
+	int force = 0, quiet = 0, nin, c, stdin_seen = 0;
+	pm_photons acc;
+	pm_error err;
+	pm_out o;
+
+	util_init(argc, argv);
+	opterr = 0;
+	while ((c = getopt_long(argc, argv, ":fho:q", lopts, NULL)) != -1) {
+		switch (c) {
+		case 'f': force = 1; break;
+		case 'h': printf("usage: %s\n%s", usage, help); return 0;
+		case 'o': out = optarg; break;
+		case 'q': quiet = 1; break;
+		case ':': usage_err(usage, "option '%s' needs a value", argv[optind - 1]);
+		default: usage_err(usage, "unknown option '%s'", argv[optind - 1]);
+		}
+	}
+	in = argv + optind;
+	nin = argc - optind;
+	if (nin == 0) {
+		in = stdin_only;
+		nin = 1;
+	}
+	for (int i = 0; i < nin; i++)
+		if (strcmp(in[i], "-") == 0 && stdin_seen++)
+			usage_err(usage, "stdin (-) given more than once");
+	if (strcmp(out, "-") == 0 && isatty(STDOUT_FILENO))
+		die("refusing to write a binary photon map to a terminal (use -o FILE or a pipe)");
+
+	/* Read everything before opening the output, so a bad input leaves an
+	 * existing output file untouched. */
+	memset(&acc, 0, sizeof acc);
+	for (int i = 0; i < nin; i++) {
+		const char *name = in[i];
+		FILE *f = strcmp(name, "-") == 0 ? stdin : fopen(name, "rb");
+		pm_photons ph;
+
+		if (!f)
+			die("cannot open '%s': %s", name, strerror(errno));
+		if (pm_photons_read(&ph, f, name, &err))
+			die_err(&err);
+		if (f != stdin)
+			fclose(f);
+		if (i == 0) {
+			acc = ph;       /* takes the records and the history */
+			first = name;
+			continue;
+		}
+		if (ph.h.scene_hash != acc.h.scene_hash) {
+			if (!force)
+				die("%s: scene hash %016llx differs from %s (%016llx); --force merges anyway",
+				    quoted(name, qa, sizeof qa), (unsigned long long)ph.h.scene_hash,
+				    quoted(first, qb, sizeof qb), (unsigned long long)acc.h.scene_hash);
+			if (!quiet)
+				warn("%s: scene hash %016llx differs from %s; merging as forced",
+				     quoted(name, qa, sizeof qa), (unsigned long long)ph.h.scene_hash,
+				     quoted(first, qb, sizeof qb));
+		}
+		if (ph.h.time != acc.h.time) {
+			if (!force)
+				die("%s: time %.9g differs from %s (%.9g); --force merges anyway",
+				    quoted(name, qa, sizeof qa), ph.h.time, quoted(first, qb, sizeof qb), acc.h.time);
+			if (!quiet)
+				warn("%s: time %.9g differs from %s; the map keeps %.9g",
+				     quoted(name, qa, sizeof qa), ph.h.time, quoted(first, qb, sizeof qb), acc.h.time);
+		}
+		if (acc.h.count + ph.h.count > UINT32_MAX)
+			die("%s: merged maps would exceed %u photons", quoted(name, qa, sizeof qa), UINT32_MAX);
+		if (acc.h.emitted > UINT64_MAX - ph.h.emitted)
+			die("%s: merged emitted count overflows", quoted(name, qa, sizeof qa));
+		if (ph.h.count) {
+			pm_photon *p = realloc(acc.p, (size_t)(acc.h.count + ph.h.count) * sizeof *p);
+			if (!p)
+				die("out of memory for %llu photons",
+				    (unsigned long long)(acc.h.count + ph.h.count));
+			memcpy(p + acc.h.count, ph.p, (size_t)ph.h.count * sizeof *p);
+			acc.p = p;
+		}
+		acc.h.count += ph.h.count;
+		acc.h.emitted += ph.h.emitted;
+		join_seeds(acc.h.seeds, sizeof acc.h.seeds, ph.h.seeds);
+		if (ph.h.history && *ph.h.history) {
+			if (acc.h.history && *acc.h.history) {
+				size_t a = strlen(acc.h.history), b = strlen(ph.h.history);
+				char *h = realloc(acc.h.history, a + b + 2);
+				if (!h)
+					die("out of memory");
+				h[a] = '\n';
+				memcpy(h + a + 1, ph.h.history, b + 1);
+				acc.h.history = h;
+			} else {
+				free(acc.h.history);
+				acc.h.history = ph.h.history;
+				ph.h.history = NULL;
+			}
+		}
+		pm_photons_free(&ph);
+	}
+	if (acc.h.count == 0 && !quiet)
+		warn("no photons: writing an empty photon map");
+	if (pm_kd_build(acc.p, (size_t)acc.h.count, &err))
+		die_err(&err);
+	acc.h.kdtree = 1;
+	acc.h.version = PM_PHOTONS_VERSION;
+	if (pm_photons_add_history(&acc, cmdline(), &err))
+		die_err(&err);
+	if (pm_out_open(&o, out, &err))
+		die_err(&err);
+	if (pm_photons_write(&acc, o.f, out, &err)) {
+		pm_out_abort(&o);
+		die_err(&err);
+	}
+	if (pm_out_commit(&o, &err))
+		die_err(&err);
+	pm_photons_free(&acc);
+	return 0;
+}
