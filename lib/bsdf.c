@@ -112,12 +112,14 @@ pm_bsdf_sample(const pm_material *m, pm_vec3 ng, pm_vec3 wo, pm_rng *r, pm_scatt
 	float u1 = pm_rng_f(r), u2 = pm_rng_f(r), u3 = pm_rng_f(r);
 
 	s->delta = 0;
+	s->pdf = 0;
 	switch (m->kind) {
 	case PM_MAT_DIFFUSE:
 		s->wi = pm_sample_cosine(n, u1, u2);
 		if (pm_dot(s->wi, n) <= 0)
 			return -1;
 		s->weight = m->kd;     /* (kd/pi) cos / (cos/pi) */
+		s->pdf = pm_dot(s->wi, n) / (float)PM_PI;
 		return 0;
 	case PM_MAT_GLOSSY: {
 		float pd = diffuse_share(m), pdf, ci;
@@ -138,6 +140,7 @@ pm_bsdf_sample(const pm_material *m, pm_vec3 ng, pm_vec3 wo, pm_rng *r, pm_scatt
 		if (!(pdf > 0))
 			return -1;
 		s->weight = pm_scale(pm_bsdf_eval(m, n, s->wi, wo), ci / pdf);
+		s->pdf = pdf;
 		return pm_vfinite(s->weight) ? 0 : -1;
 	}
 	case PM_MAT_MIRROR:
@@ -164,6 +167,16 @@ pm_bsdf_sample(const pm_material *m, pm_vec3 ng, pm_vec3 wo, pm_rng *r, pm_scatt
 	}
 	}
 	return -1;
+}
+
+float
+pm_bsdf_pdf(const pm_material *m, pm_vec3 n, pm_vec3 wi, pm_vec3 wo)
+{
+	switch (m->kind) {
+	case PM_MAT_DIFFUSE: return fmaxf(pm_dot(wi, n), 0.0f) / (float)PM_PI;
+	case PM_MAT_GLOSSY: return pm_dot(wi, n) > 0 ? glossy_pdf(m, n, wi, wo) : 0.0f;
+	default: return 0.0f;
+	}
 }
 
 float

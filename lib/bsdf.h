@@ -18,6 +18,7 @@ pm_vec3 pm_bsdf_eval(const pm_material *m, pm_vec3 n, pm_vec3 wi, pm_vec3 wo);
 typedef struct pm_scatter {
 	pm_vec3 wi;         /* sampled direction */
 	pm_vec3 weight;     /* f cos / pdf (the throughput factor) */
+	float pdf;          /* solid-angle density of wi (0 for a delta) */
 	int delta;          /* 1 if sampled from a delta (mirror, glass) */
 } pm_scatter;
 
@@ -26,6 +27,10 @@ typedef struct pm_scatter {
  * *s, or -1 if the sample is absorbed (direction below the surface). */
 int pm_bsdf_sample(const pm_material *m, pm_vec3 ng, pm_vec3 wo, pm_rng *r,
                    pm_scatter *s);
+
+/* Solid-angle density with which pm_bsdf_sample picks wi given wo, for
+ * multiple importance sampling (0 for mirror and glass). n on wo's side. */
+float pm_bsdf_pdf(const pm_material *m, pm_vec3 n, pm_vec3 wi, pm_vec3 wo);
 
 /* Directional albedo used for Russian roulette in the light pass: the
  * largest channel of the material's total reflectance (kd + ks, ks, ...). */

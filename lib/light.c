@@ -14,6 +14,7 @@ pm_lights_build(pm_lights *L, const pm_scene *s, const pm_vec3 *verts, float t, 
 
 	L->l = NULL;
 	L->cdf = NULL;
+	L->tri_light = NULL;
 	L->n = 0;
 	L->total = pm_v3(0, 0, 0);
 	for (uint32_t i = 0; i < s->ntris; i++) {
@@ -25,7 +26,8 @@ pm_lights_build(pm_lights *L, const pm_scene *s, const pm_vec3 *verts, float t, 
 		return pm_seterr(err, "%s: scene has no lights", s->path);
 	L->l = calloc((size_t)n, sizeof *L->l);
 	L->cdf = calloc((size_t)n + 1, sizeof *L->cdf);
-	if (!L->l || !L->cdf) {
+	L->tri_light = malloc((s->ntris ? s->ntris : 1) * sizeof *L->tri_light);
+	if (!L->l || !L->cdf || !L->tri_light) {
 		pm_lights_free(L);
 		return pm_seterr(err, "out of memory");
 	}
@@ -40,8 +42,10 @@ pm_lights_build(pm_lights *L, const pm_scene *s, const pm_vec3 *verts, float t, 
 		const pm_material *m = &s->mats[s->objs[s->poly_obj[s->tri_poly[i]]].material];
 		pm_light *l;
 		pm_vec3 c;
+		L->tri_light[i] = -1;
 		if (!(pm_maxc(m->emit) > 0))
 			continue;
+		L->tri_light[i] = k;
 		l = &L->l[k++];
 		l->tri = (int)i;
 		l->p0 = verts[s->tris[i][0]];
@@ -75,8 +79,10 @@ pm_lights_free(pm_lights *L)
 {
 	free(L->l);
 	free(L->cdf);
+	free(L->tri_light);
 	L->l = NULL;
 	L->cdf = NULL;
+	L->tri_light = NULL;
 	L->n = 0;
 }
 
@@ -128,7 +134,8 @@ pm_lights_emit(const pm_lights *L, pm_rng *r, pm_vec3 *o, pm_vec3 *d, pm_vec3 *n
 }
 
 int
-pm_lights_sample(const pm_lights *L, pm_vec3 x, pm_rng *r, pm_vec3 *wi, float *dist, pm_vec3 *li)
+pm_lights_sample(const pm_lights *L, pm_vec3 x, pm_rng *r, pm_vec3 *wi, float *dist,
+                 pm_vec3 *li, float *spdf)
 {
 	float pdf;
 	const pm_light *l = &L->l[pm_lights_pick(L, pm_rng_f(r), &pdf)];
@@ -146,6 +153,7 @@ pm_lights_sample(const pm_lights *L, pm_vec3 x, pm_rng *r, pm_vec3 *wi, float *d
 	*dist = d;
 	if (l->tri < 0) {
 		*li = pm_scale(l->le, 1.0f / (4.0f * (float)PM_PI * d2 * pdf));
+		*spdf = 0;
 		return 1;
 	}
 	cl = -pm_dot(*wi, l->n);
@@ -154,5 +162,27 @@ pm_lights_sample(const pm_lights *L, pm_vec3 x, pm_rng *r, pm_vec3 *wi, float *d
 	if (!(cl > 0))
 		return 0;
 	*li = pm_scale(l->le, cl * l->area / (d2 * pdf));
+	*spdf = pdf * d2 / (cl * l->area);
 	return 1;
+}
+
+float
+pm_lights_pdf(const pm_lights *L, uint32_t tri, pm_vec3 x, pm_vec3 p)
+{
+	int i = L->tri_light[tri];
+	const pm_light *l;
+	pm_vec3 v;
+	float d2, cl;
+
+	if (i < 0)
+		return 0;
+	l = &L->l[i];
+	v = pm_sub(p, x);
+	d2 = pm_dot(v, v);
+	cl = -pm_dot(v, l->n) / sqrtf(d2);
+	if (cl < 0 && l->twosided)
+		cl = -cl;
+	if (!(cl > 0) || !(l->area > 0))
+		return 0;
+	return (L->cdf[i + 1] - L->cdf[i]) * d2 / (cl * l->area);
 }

@@ -26,6 +26,7 @@ typedef struct pm_lights {
 	pm_light *l;
 	int n;
 	float *cdf;         /* n + 1 entries, by mean power over the channels */
+	int *tri_light;     /* per scene triangle: its light index, or -1 */
 	pm_vec3 total;      /* sum of the lights' power */
 } pm_lights;
 
@@ -43,7 +44,14 @@ void pm_lights_emit(const pm_lights *L, pm_rng *r, pm_vec3 *o, pm_vec3 *d, pm_ve
  * unit direction *wi, the distance *dist to the light point, and *li =
  * Le cos_l / (pdf_area d^2) (or I / d^2 for a point light) divided by the
  * pick probability: multiplied by f_r cos_x and visibility it is an unbiased
- * estimate of direct light. Returns 0 if the sample carries nothing. */
-int pm_lights_sample(const pm_lights *L, pm_vec3 x, pm_rng *r, pm_vec3 *wi, float *dist, pm_vec3 *li);
+ * estimate of direct light. *pdf is the sample's solid-angle density, or 0
+ * for a point light (a delta, which BSDF sampling can never hit). Returns 0
+ * if the sample carries nothing. */
+int pm_lights_sample(const pm_lights *L, pm_vec3 x, pm_rng *r, pm_vec3 *wi, float *dist,
+                     pm_vec3 *li, float *pdf);
+
+/* Solid-angle density with which pm_lights_sample, called at x, would pick
+ * point p on scene triangle tri (0 if tri does not emit toward x). */
+float pm_lights_pdf(const pm_lights *L, uint32_t tri, pm_vec3 x, pm_vec3 p);
 
 #endif

@@ -65,14 +65,25 @@ typedef struct scratch {
 	pm_comp_scratch *comp;
 } scratch;
 
+/* Power heuristic (Veach 1997, §9.2.4) for two strategies, one sample each. */
+static float
+mis(float a, float b)
+{
+	return a > 0 ? a * a / (a * a + b * b) : 0.0f;
+}
+
+/* Direct light by a shadow ray to a light sample, weighted against BSDF
+ * sampling of the same light (multiple importance sampling): corners next
+ * to an emitter, where light sampling alone has a heavy tail, are then
+ * covered by the BSDF samples. */
 static pm_vec3
 direct_light(const ctx *c, pm_vec3 x, pm_vec3 ng, pm_vec3 n, pm_vec3 wo,
              const pm_material *m, pm_rng *r)
 {
 	pm_vec3 wi, li, f;
-	float dist, cosx;
+	float dist, cosx, lpdf, w;
 
-	if (!pm_lights_sample(c->L, x, r, &wi, &dist, &li))
+	if (!pm_lights_sample(c->L, x, r, &wi, &dist, &li, &lpdf))
 		return pm_v3(0, 0, 0);
 	cosx = pm_dot(wi, n);
 	if (cosx <= 0)
@@ -87,7 +98,8 @@ direct_light(const ctx *c, pm_vec3 x, pm_vec3 ng, pm_vec3 n, pm_vec3 wo,
 		if (pm_accel_occluded(c->a, o, wi, 0.0f, far * (1.0f - 1e-4f)))
 			return pm_v3(0, 0, 0);
 	}
-	return pm_scale(pm_mul(f, li), cosx);
+	w = lpdf > 0 ? mis(lpdf, pm_bsdf_pdf(m, n, wi, wo)) : 1.0f;
+	return pm_scale(pm_mul(f, li), cosx * w);
 }
 
 static pm_vec3
@@ -100,19 +112,34 @@ emitted(const pm_material *m, pm_vec3 ng, pm_vec3 wo)
 	return pm_v3(0, 0, 0);
 }
 
+/* Emission found by a BSDF-sampled ray from x (density bpdf), weighted
+ * against light sampling; all of it when the sample was a delta. */
+static pm_vec3
+emitted_mis(const ctx *c, const pm_hit *h, pm_vec3 x, pm_vec3 d, float bpdf, int delta)
+{
+	const pm_material *m = &c->s->mats[c->s->objs[h->obj].material];
+	pm_vec3 e = emitted(m, h->ng, pm_neg(d));
+
+	if (delta || pm_maxc(e) <= 0)
+		return e;
+	return pm_scale(e, mis(bpdf, pm_lights_pdf(c->L, h->tri, x, h->p)));
+}
+
 static void
 trace(const ctx *c, scratch *sc, pm_vec3 o, pm_vec3 d, pm_rng *r, sample *out)
 {
 	int maxd = c->o->max_depth > 0 ? c->o->max_depth : 64;
 	pm_vec3 beta = pm_v3(1, 1, 1);
 	pm_vec3 *bucket = NULL;   /* where contributions after the first hit go */
-	int after_delta = 1;      /* the camera counts as a delta: emitters seen count */
+	pm_vec3 prev = o;         /* the last scattering point */
+	int delta = 1;            /* the camera counts as a delta: emitters seen count */
+	float bpdf = 0;           /* density of the last BSDF sample */
 	pm_hit h;
 
 	memset(out, 0, sizeof *out);
 	for (int depth = 0; depth < maxd; depth++) {
 		const pm_material *m;
-		pm_vec3 wo = pm_neg(d), n, e;
+		pm_vec3 wo = pm_neg(d), n;
 		pm_vec3 *here;
 		pm_scatter bs;
 
@@ -123,15 +150,20 @@ trace(const ctx *c, scratch *sc, pm_vec3 o, pm_vec3 d, pm_rng *r, sample *out)
 		if (depth == 0)
 			bucket = pm_mat_is_photon_surface(m) ? &out->indirect : &out->specular;
 		here = depth == 0 ? (m->strong ? &out->specular : &out->direct) : bucket;
-		if (after_delta) {
-			e = emitted(m, h.ng, wo);
-			*here = pm_add(*here, pm_mul(beta, e));
-		}
+		*here = pm_add(*here, pm_mul(beta, emitted_mis(c, &h, prev, d, bpdf, delta)));
 		if (m->kind == PM_MAT_DIFFUSE || m->kind == PM_MAT_GLOSSY)
 			*here = pm_add(*here, pm_mul(beta, direct_light(c, h.p, h.ng, n, wo, m, r)));
+		if (pm_bsdf_sample(m, h.ng, wo, r, &bs) != 0)
+			bs.pdf = -1;
 		if (pm_mat_is_photon_surface(m) && c->o->estimator != PM_EST_PATH) {
 			pm_estimate_info info;
 			pm_vec3 L;
+			pm_hit lh;
+			/* The BSDF-sampled half of the direct light. */
+			if (bs.pdf > 0 && pm_accel_hit(c->a, pm_accel_offset(c->a, h.p, h.ng, bs.wi),
+			                               bs.wi, 0.0f, FLT_MAX, &lh))
+				*here = pm_add(*here, pm_mul(pm_mul(beta, bs.weight),
+				                             emitted_mis(c, &lh, h.p, bs.wi, bs.pdf, 0)));
 			if (c->o->estimator == PM_EST_COMPENSATED)
 				L = pm_estimate_compensated(c->pi, c->map, h.p, n, wo, m, c->o->k, sc->comp, &info);
 			else
@@ -144,10 +176,12 @@ trace(const ctx *c, scratch *sc, pm_vec3 o, pm_vec3 d, pm_rng *r, sample *out)
 			}
 			return;
 		}
-		if (pm_bsdf_sample(m, h.ng, wo, r, &bs) != 0)
+		if (bs.pdf < 0)
 			return;
 		beta = pm_mul(beta, bs.weight);
-		after_delta = bs.delta;
+		delta = bs.delta;
+		bpdf = bs.pdf;
+		prev = h.p;
 		if (depth >= 3) {
 			float q = fminf(0.95f, pm_maxc(beta));
 			if (!(q > 0) || pm_rng_f(r) >= q)

@@ -14,13 +14,14 @@
 #include "photon.h"
 #include "util.h"
 
-static const char usage[] = "pm-build [-fhq] [-o FILE|-] [FILE ...|-]";
+static const char usage[] = "pm-build [-fhq] [-j THREADS] [-o FILE|-] [FILE ...|-]";
 static const char help[] =
 	"Reads photon files (or maps) and writes one photon map: the records\n"
 	"concatenated, emitted counts summed, then ordered as a balanced kd-tree.\n"
 	"With no FILE, or FILE -, reads stdin.\n"
 	"  -f, --force        merge inputs whose scene hash or time differ (default: refuse)\n"
 	"  -h, --help         print this help and exit\n"
+	"  -j THREADS         threads, 0 for all cores (default 0); the output does not depend on it\n"
 	"  -o, --output FILE  the photon map to write, - for stdout (default: -)\n"
 	"  -q, --quiet        no warnings (default: warn on forced merges and empty maps)\n";
 
@@ -81,10 +82,11 @@ main(int argc, char **argv)
 
 	util_init(argc, argv);
 	opterr = 0;
-	while ((c = getopt_long(argc, argv, ":fho:q", lopts, NULL)) != -1) {
+	while ((c = getopt_long(argc, argv, ":fhj:o:q", lopts, NULL)) != -1) {
 		switch (c) {
 		case 'f': force = 1; break;
 		case 'h': printf("usage: %s\n%s", usage, help); return 0;
+		case 'j': set_threads((int)parse_int(optarg, 0, 4096, "-j", usage)); break;
 		case 'o': out = optarg; break;
 		case 'q': quiet = 1; break;
 		case ':': usage_err(usage, "option '%s' needs a value", argv[optind - 1]);

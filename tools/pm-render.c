@@ -69,6 +69,7 @@ main(int argc, char **argv)
 	char buf[64], *hist;
 
 	util_init(argc, argv);
+	opterr = 0;
 	while ((c = getopt_long(argc, argv, "e:hj:k:o:p:s:t:", longopts, NULL)) != -1) {
 		switch (c) {
 		case 'e':
@@ -83,7 +84,7 @@ main(int argc, char **argv)
 		case 'p': o.spp = (int)parse_int(optarg, 1, 1 << 20, "-p", usage); break;
 		case 's': o.seed = parse_u64(optarg, "-s", usage); break;
 		case 't': time = (float)parse_real(optarg, 0, 1, "-t", usage); have_time = 1; break;
-		default: usage_err(usage, "unknown option");
+		default: usage_err(usage, "unknown option '%s'", argv[optind - 1]);
 		}
 	}
 	if (argc - optind < 1)

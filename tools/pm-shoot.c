@@ -47,6 +47,7 @@ main(int argc, char **argv)
 	pm_error err;
 
 	util_init(argc, argv);
+	opterr = 0;
 	while ((c = getopt(argc, argv, "hj:n:o:qs:t:")) != -1) {
 		switch (c) {
 		case 'h': help();
@@ -56,7 +57,7 @@ main(int argc, char **argv)
 		case 'q': quiet = 1; break;
 		case 's': o.seed = parse_u64(optarg, "-s", usage); break;
 		case 't': o.time = (float)parse_real(optarg, 0, 1, "-t", usage); break;
-		default: usage_err(usage, "unknown option");
+		default: usage_err(usage, "unknown option '%s'", argv[optind - 1]);
 		}
 	}
 	if (argc - optind != 1)

@@ -32,17 +32,23 @@ done
 # The whole pipeline through pipes, twice with the same seed, and with 1 and
 # 2 threads: identical bytes.
 pm-shoot -n 20000 -s 1 box.pms | pm-build | pm-render -e classical -s 1 box.pms - -o a.exr
-pm-shoot -n 20000 -s 1 -j 2 box.pms -o shot2.pm
-pm-shoot -n 20000 -s 1 -j 1 box.pms -o shot1.pm
-check "pm-shoot -j1 and -j2 give identical photons" cmp -s shot1.pm shot2.pm
-pm-build shot1.pm -o map1.pm
-pm-build shot2.pm -o map2.pm
-check "pm-build is deterministic" cmp -s map1.pm map2.pm
+# Outputs record their command lines, so the runs being compared use the
+# same file names, in two directories.
+mkdir -p j1 j2
+(cd j1 && pm-shoot -n 20000 -s 1 -j 1 ../box.pms -o shot.pm && pm-build -j 1 shot.pm -o map.pm)
+(cd j2 && pm-shoot -n 20000 -s 1 -j 2 ../box.pms -o shot.pm && pm-build -j 2 shot.pm -o map.pm)
+check "pm-shoot -j1 and -j2 give identical photon files" cmp -s j1/shot.pm j2/shot.pm
+check "pm-build -j1 and -j2 give identical maps" cmp -s j1/map.pm j2/map.pm
+cp j1/shot.pm shot1.pm
+cp j1/map.pm map1.pm
 for est in classical compensated path; do
-	pm-render -e $est -j 1 -s 9 box.pms map1.pm -o $est-1.exr
-	pm-render -e $est -j 2 -s 9 box.pms map1.pm -o $est-2.exr
-	check "pm-render -e $est -j1 and -j2 identical" cmp -s $est-1.exr $est-2.exr
+	(cd j1 && pm-render -e $est -j 1 -s 9 ../box.pms map.pm -o $est.exr)
+	(cd j2 && pm-render -e $est -j 2 -s 9 ../box.pms map.pm -o $est.exr)
+	check "pm-render -e $est -j1 and -j2 identical" cmp -s j1/$est.exr j2/$est.exr
 done
+(cd j1 && pm-render -e classical -s 9 ../box.pms map.pm -o again.exr && pm-render -e classical -s 9 ../box.pms map.pm -o again2.exr)
+pm-diff j1/again.exr j1/again2.exr >d0.txt
+check "same seed twice gives the same pixels" test "$(kv d0.txt max_abs)" = 0
 pm-render -e classical -s 1 box.pms map1.pm -o b.exr
 pm-diff a.exr b.exr >d.txt
 check "same seed through pipes and files gives the same pixels" test "$(kv d.txt max_abs)" = 0

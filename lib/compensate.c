@@ -1,0 +1,321 @@
+/* compensate.c — the compensated radiance estimate (Hey & Purgathofer 2001,
+ * "Global Illumination with Photon Map Compensation", §3, eq. 1-4): photons
+ * in the L-infinity cube around x, the photon-surface polygons clipped into
+ * it, each photon's flux spread over its own target area A_p, the projection
+ * of that geometry across the photon's direction. The rules for the cases
+ * the paper leaves open are in compensate.h.
+ *
+ * Cost per estimate: one k-nearest search, one pass over the polygons that
+ * meet the cube (typically 1-6) clipping each once and adding its projected
+ * area to every photon's A_p, and one f_r per photon, as in the classical
+ * estimate. All geometry is double and relative to x. */
+#include "compensate.h"
+
+#include <float.h>
+#include <math.h>
+#include <stdlib.h>
+
+#include "bsdf.h"
+#include "clip.h"
+
+/* A polygon whose unit normal is this close to +-n is taken as lying in the
+ * plane of x (1 - cos of about 1.4 milliradians). */
+#define PARALLEL_EPS 1e-6
+#define MAX_K (1 << 24)
+
+struct pm_comp_scratch {
+	int k;
+	pm_nn *nn;
+	pm_vec3 *pos, *dir;    /* photons found */
+	double *w;             /* their weights */
+	double *d;             /* their L-infinity distances from x */
+	int *act;              /* photons used that arrive in front of n */
+	pm_dvec3 *psi;         /* ... their unit directions */
+	double *c;             /* ... Psi . n */
+	double *ap;            /* ... target areas A_p */
+	pm_comp_stats last;
+};
+
+pm_comp_scratch *
+pm_comp_scratch_new(int k)
+{
+	pm_comp_scratch *sc;
+	size_t n = (size_t)k;
+
+	if (k < 1 || k > MAX_K)
+		return NULL;
+	sc = calloc(1, sizeof *sc);
+	if (!sc)
+		return NULL;
+	sc->k = k;
+	sc->nn = malloc(n * sizeof *sc->nn);
+	sc->pos = malloc(n * sizeof *sc->pos);
+	sc->dir = malloc(n * sizeof *sc->dir);
+	sc->w = malloc(n * sizeof *sc->w);
+	sc->d = malloc(n * sizeof *sc->d);
+	sc->act = malloc(n * sizeof *sc->act);
+	sc->psi = malloc(n * sizeof *sc->psi);
+	sc->c = malloc(n * sizeof *sc->c);
+	sc->ap = malloc(n * sizeof *sc->ap);
+	if (!sc->nn || !sc->pos || !sc->dir || !sc->w || !sc->d || !sc->act
+	    || !sc->psi || !sc->c || !sc->ap) {
+		pm_comp_scratch_free(sc);
+		return NULL;
+	}
+	return sc;
+}
+
+void
+pm_comp_scratch_free(pm_comp_scratch *sc)
+{
+	if (!sc)
+		return;
+	free(sc->nn);
+	free(sc->pos);
+	free(sc->dir);
+	free(sc->w);
+	free(sc->d);
+	free(sc->act);
+	free(sc->psi);
+	free(sc->c);
+	free(sc->ap);
+	free(sc);
+}
+
+const pm_comp_stats *
+pm_comp_last(const pm_comp_scratch *sc)
+{
+	return &sc->last;
+}
+
+/* What the polygon visitor needs: the cube, and the photons in front of n. */
+typedef struct visit_ctx {
+	const pm_polyindex *pi;
+	pm_dvec3 x, n;
+	double h, tau;
+	int open;
+	int na;
+	const pm_dvec3 *psi;
+	const double *c;
+	double *ap;
+	int polys;
+} visit_ctx;
+
+/* Eq. 4 for one polygon g: clip it into the cube (A_g) and add A_g (Psi_p .
+ * N_g) to the target area of every photon it faces. */
+static void
+visit(void *vctx, uint32_t g)
+{
+	visit_ctx *q = vctx;
+	const pm_scene *s = q->pi->s;
+	const pm_vec3 *verts = q->pi->verts;
+	double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
+	pm_clipper cl;
+	pm_dvec3 N;
+	double A, len, sg;
+
+	pm_clip_begin(&cl, q->h);
+	for (uint32_t v = s->poly_start[g]; v < s->poly_start[g + 1]; v++) {
+		pm_dvec3 r = pm_dsub(pm_dfromf(verts[s->poly_vert[v]]), q->x);
+		double rc[3] = {r.x, r.y, r.z};
+		for (int a = 0; a < 3; a++) {
+			lo[a] = fmin(lo[a], rc[a]);
+			hi[a] = fmax(hi[a], rc[a]);
+		}
+		pm_clip_vertex(&cl, r);
+	}
+	/* Open cube: a polygon lying in (or beyond) a face plane is where the
+	 * set-aside boundary photons are; it has no area inside. */
+	if (q->open)
+		for (int a = 0; a < 3; a++)
+			if (lo[a] >= q->h - 0.5 * q->tau || hi[a] <= -q->h + 0.5 * q->tau)
+				return;
+	N = pm_dfromf(s->poly_normal[g]);
+	len = pm_dlen(N);
+	if (!(len > 0))
+		return;
+	N = pm_dscale(N, 1 / len);
+	A = pm_clip_end(&cl, N);
+	if (!(A > 0))
+		return;
+	q->polys++;
+
+	int solid = s->objs[s->poly_obj[g]].solid;
+	sg = pm_ddot(N, q->n);
+	if (fabs(sg) >= 1 - PARALLEL_EPS) {
+		/* The plane of x: Psi.N_g is Psi.n up to sign, exactly. */
+		double sign = sg > 0 ? 1 : -1;
+		for (int j = 0; j < q->na; j++) {
+			double t = solid ? fmax(0, sign * q->c[j]) : q->c[j];
+			q->ap[j] += A * t;
+		}
+		return;
+	}
+	for (int j = 0; j < q->na; j++) {
+		double t = pm_ddot(q->psi[j], N);
+		q->ap[j] += A * (solid ? fmax(0, t) : fabs(t));
+	}
+}
+
+void
+pm_comp_weights(const pm_polyindex *pi, pm_vec3 x, pm_vec3 n,
+                const pm_vec3 *pos, const pm_vec3 *dir, int m,
+                int complete, pm_comp_scratch *sc, double *w,
+                pm_comp_stats *st)
+{
+	pm_comp_stats z = {0};
+	visit_ctx q = {0};
+	pm_dvec3 xd = pm_dfromf(x), nd = pm_dfromf(n);
+	double hk = 0, hs, tau, len = pm_dlen(nd);
+	int valid = 0, inner = 0, na = 0;
+
+	if (m > sc->k)
+		m = sc->k;
+	for (int i = 0; i < m; i++)
+		w[i] = 0;
+	z.found = m > 0 ? m : 0;
+	if (m <= 0 || !pi || !pm_vfinite(x) || !(len > 0) || !isfinite(len))
+		goto out;
+	nd = pm_dscale(nd, 1 / len);
+
+	/* L-infinity distances, exact in double (a difference of floats). */
+	for (int i = 0; i < m; i++) {
+		pm_dvec3 r = pm_dsub(pm_dfromf(pos[i]), xd);
+		double d = fmax(fabs(r.x), fmax(fabs(r.y), fabs(r.z)));
+		sc->d[i] = isfinite(d) ? d : -1;    /* -1: not used */
+		if (d >= 0 && isfinite(d)) {
+			hk = fmax(hk, d);
+			valid++;
+		}
+	}
+	if (valid == 0)
+		goto out;
+
+	/* The boundary shell: the photons at the largest distance, chained down
+	 * through gaps of at most tau. Every photon nearer than the shell is
+	 * certainly in the set; those in it may be only some of their kind. */
+	tau = PM_COMP_TAU_REL * hk;
+	hs = hk;
+	if (!complete) {
+		for (;;) {
+			double lo = hs - tau, nm = hs;
+			for (int i = 0; i < m; i++)
+				if (sc->d[i] >= lo && sc->d[i] < nm)
+					nm = sc->d[i];
+			if (nm == hs)
+				break;
+			hs = nm;
+		}
+		for (int i = 0; i < m; i++)
+			inner += sc->d[i] >= 0 && sc->d[i] < hs;
+	}
+	if (complete || inner == 0) {
+		z.closed = 1;
+		q.h = fmax(hk + tau, PM_COMP_HMIN_REL * pi->extent);
+	} else {
+		q.h = hs;
+		z.shell = valid - inner;
+	}
+	z.h = q.h;
+	if (!(q.h > 0) || !isfinite(q.h))
+		goto out;
+
+	/* Photons used that arrive in front of n; the others add nothing. */
+	for (int i = 0; i < m; i++) {
+		if (sc->d[i] < 0 || (!z.closed && sc->d[i] >= hs))
+			continue;
+		pm_dvec3 p = pm_dfromf(dir[i]);
+		double l = pm_dlen(p);
+		if (!(l > 0) || !isfinite(l))
+			continue;
+		p = pm_dscale(p, 1 / l);
+		double c = pm_ddot(p, nd);
+		if (!(c > 0))
+			continue;
+		sc->act[na] = i;
+		sc->psi[na] = p;
+		sc->c[na] = c;
+		sc->ap[na] = 0;
+		na++;
+	}
+	z.front = na;
+	if (na == 0)
+		goto out;
+
+	q.pi = pi;
+	q.x = xd;
+	q.n = nd;
+	q.tau = tau;
+	q.open = !z.closed;
+	q.na = na;
+	q.psi = sc->psi;
+	q.c = sc->c;
+	q.ap = sc->ap;
+	pm_polyindex_cube(pi, xd, q.h, visit, &q);
+	z.polys = q.polys;
+
+	/* Eq. 2 and 3: Phi_p / A_p (Psi_p . N). A photon with no front-facing
+	 * area cannot be spread: skip it. The threshold scales with Psi . n so
+	 * that grazing photons on the plane of x (A_p ~ A_g (Psi . n)) pass. */
+	double thr = PM_COMP_SKIP_REL * 4 * q.h * q.h;
+	for (int j = 0; j < na; j++) {
+		if (sc->ap[j] > thr * sc->c[j])
+			w[sc->act[j]] = sc->c[j] / sc->ap[j];
+		else
+			z.skipped++;
+	}
+out:
+	if (st)
+		*st = z;
+}
+
+pm_vec3
+pm_estimate_compensated(const pm_polyindex *pi, const pm_photons *map,
+                        pm_vec3 x, pm_vec3 n, pm_vec3 wo,
+                        const pm_material *m, int k,
+                        pm_comp_scratch *sc, pm_estimate_info *info)
+{
+	pm_vec3 L = pm_v3(0, 0, 0);
+	double sum[3] = {0, 0, 0}, inv;
+	float q[3] = {x.x, x.y, x.z}, dfar = 0;
+	int got, complete;
+
+	info->size = 0;
+	info->nphotons = 0;
+	if (!sc)
+		return L;
+	sc->last = (pm_comp_stats){0};
+	if (!pi || !map || !m || k < 1 || map->h.count == 0 || map->h.emitted == 0
+	    || !pm_vfinite(x))
+		return L;
+	if (k > sc->k)
+		k = sc->k;
+	got = pm_kd_knn(map->p, (size_t)map->h.count, q, k, PM_LINF, INFINITY, sc->nn, &dfar);
+	if (got <= 0)
+		return L;
+	for (int i = 0; i < got; i++) {
+		const pm_photon *p = &map->p[sc->nn[i].idx];
+		sc->pos[i] = pm_photon_pos(p);
+		sc->dir[i] = pm_photon_dir(p);
+	}
+	complete = got < k || (uint64_t)got == map->h.count;
+	pm_comp_weights(pi, x, n, sc->pos, sc->dir, got, complete, sc, sc->w, &sc->last);
+	for (int i = 0; i < got; i++) {
+		if (!(sc->w[i] > 0))
+			continue;
+		pm_vec3 f = pm_bsdf_eval(m, n, sc->dir[i], wo);
+		pm_vec3 P = pm_photon_power(&map->p[sc->nn[i].idx]);
+		sum[0] += sc->w[i] * P.x * f.x;
+		sum[1] += sc->w[i] * P.y * f.y;
+		sum[2] += sc->w[i] * P.z * f.z;
+	}
+	inv = 1.0 / (double)map->h.emitted;
+	for (int c = 0; c < 3; c++) {
+		double v = sum[c] * inv;
+		sum[c] = !(v > 0) ? 0 : v > FLT_MAX ? FLT_MAX : v;
+	}
+	L = pm_v3((float)sum[0], (float)sum[1], (float)sum[2]);
+	info->size = (float)sc->last.h;
+	info->nphotons = got;
+	return L;
+}

@@ -1,0 +1,999 @@
+/* test_compensate.c — the compensated radiance estimate (lib/compensate.c,
+ * lib/polyindex.c) on hand-built scenes and photon sets whose irradiance is
+ * known: parallel beams lighting planar rectangles without occlusion, so
+ * each rectangle's irradiance is (photons on it) * flux / area, and a
+ * Lambertian surface's radiance is rho E / pi.
+ *
+ * Most tests drive pm_comp_weights with a brute-force L-infinity search
+ * written here, so they test this module alone; the last one runs the whole
+ * pm_estimate_compensated (kd-tree, packed photons, BSDF) against it. */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "bsdf.h"
+#include "check.h"
+#include "compensate.h"
+#include "kdtree.h"
+#include "rng.h"
+
+#define RHO 0.7
+#define K 50
+
+/* ---- scenes ---- */
+
+enum { MAXV = 256, MAXP = 64 };
+
+typedef struct tscene {
+	pm_scene s;
+	pm_material mats[2];       /* 0: diffuse (photon surface), 1: mirror */
+	pm_object objs[16];
+	pm_vec3 verts[MAXV];
+	uint32_t start[MAXP + 1], vidx[MAXV], obj[MAXP];
+	pm_vec3 normal[MAXP];
+	/* rectangles, for placing photons: corner, edges, unit normal */
+	pm_vec3 ro[MAXP], ru[MAXP], rv[MAXP];
+	int nrect;
+} tscene;
+
+static void
+ts_init(tscene *t)
+{
+	memset(t, 0, sizeof *t);
+	t->mats[0].kind = PM_MAT_DIFFUSE;
+	t->mats[0].kd = pm_v3(RHO, RHO, RHO);
+	t->mats[1].kind = PM_MAT_MIRROR;
+	t->mats[1].strong = 1;
+	t->s.mats = t->mats;
+	t->s.nmats = 2;
+	t->s.objs = t->objs;
+	t->s.verts = t->verts;
+	t->s.poly_start = t->start;
+	t->s.poly_vert = t->vidx;
+	t->s.poly_obj = t->obj;
+	t->s.poly_normal = t->normal;
+}
+
+static int
+ts_object(tscene *t, int solid, int mat)
+{
+	pm_object *o = &t->objs[t->s.nobjs];
+	o->solid = solid;
+	o->material = mat;
+	return t->s.nobjs++;
+}
+
+static void
+ts_poly(tscene *t, int obj, int n, const pm_vec3 *v)
+{
+	uint32_t i = t->s.npolys, b = t->start[i];
+	pm_dvec3 s = {0, 0, 0};
+	for (int j = 0; j < n; j++) {
+		t->verts[t->s.nverts] = v[j];
+		t->vidx[b + j] = t->s.nverts++;
+		s = pm_dadd(s, pm_dcross(pm_dfromf(v[j]), pm_dfromf(v[(j + 1) % n])));
+	}
+	double l = pm_dlen(s);
+	t->normal[i] = pm_v3((float)(s.x / l), (float)(s.y / l), (float)(s.z / l));
+	t->obj[i] = (uint32_t)obj;
+	t->start[i + 1] = b + (uint32_t)n;
+	t->s.npolys++;
+}
+
+/* The quad o, o+u, o+u+v, o+v; front normal u x v. */
+static int
+ts_rect(tscene *t, int obj, pm_vec3 o, pm_vec3 u, pm_vec3 v)
+{
+	pm_vec3 q[4] = {o, pm_add(o, u), pm_add(pm_add(o, u), v), pm_add(o, v)};
+	ts_poly(t, obj, 4, q);
+	t->ro[t->nrect] = o;
+	t->ru[t->nrect] = u;
+	t->rv[t->nrect] = v;
+	return t->nrect++;
+}
+
+/* ---- photons ---- */
+
+typedef struct tphotons {
+	pm_vec3 *pos, *dir;
+	int n, cap;
+	int *on;          /* rectangle each photon lies on */
+	double flux;      /* per photon */
+} tphotons;
+
+static void
+tp_add(tphotons *p, pm_vec3 pos, pm_vec3 dir, int rect)
+{
+	if (p->n == p->cap) {
+		p->cap = p->cap ? 2 * p->cap : 1024;
+		p->pos = realloc(p->pos, p->cap * sizeof *p->pos);
+		p->dir = realloc(p->dir, p->cap * sizeof *p->dir);
+		p->on = realloc(p->on, p->cap * sizeof *p->on);
+	}
+	p->pos[p->n] = pos;
+	p->dir[p->n] = dir;
+	p->on[p->n] = rect;
+	p->n++;
+}
+
+static void
+tp_free(tphotons *p)
+{
+	free(p->pos);
+	free(p->dir);
+	free(p->on);
+	memset(p, 0, sizeof *p);
+}
+
+static double
+rnd(pm_rng *r)
+{
+	return (pm_rng_u32(r) + 0.5) / 4294967296.0;
+}
+
+/* `count` photons uniform on rectangle i, all arriving from dir. q > 0
+ * rounds positions to multiples of q (so translating them is exact). */
+static void
+tp_rect(tphotons *p, const tscene *t, int i, int count, pm_vec3 dir, pm_rng *r, double q)
+{
+	for (int j = 0; j < count; j++) {
+		double a = rnd(r), b = rnd(r);
+		double c[3];
+		for (int k = 0; k < 3; k++) {
+			c[k] = pm_vget(t->ro[i], k) + a * pm_vget(t->ru[i], k) + b * pm_vget(t->rv[i], k);
+			if (q > 0)
+				c[k] = q * nearbyint(c[k] / q);
+		}
+		tp_add(p, pm_v3((float)c[0], (float)c[1], (float)c[2]), dir, i);
+	}
+}
+
+static double
+rect_area(const tscene *t, int i)
+{
+	return pm_len(pm_cross(t->ru[i], t->rv[i]));
+}
+
+/* A parallel beam from direction dir, `dens` photons per unit area across
+ * it, on every rectangle in mask that faces it (either side for sheets):
+ * each gets dens * area * |cos| photons. */
+static void
+tp_beam(tphotons *p, const tscene *t, unsigned mask, pm_vec3 dir, double dens, pm_rng *r, double q)
+{
+	for (int i = 0; i < t->nrect; i++) {
+		if (!(mask >> i & 1))
+			continue;
+		pm_vec3 N = pm_norm(pm_cross(t->ru[i], t->rv[i]));
+		double c = fabs(pm_dot(N, dir));
+		tp_rect(p, t, i, (int)lround(dens * rect_area(t, i) * c), dir, r, q);
+	}
+}
+
+/* Irradiance on rectangle i from photons arriving on the side of N. */
+static double
+irradiance(const tphotons *p, const tscene *t, int i, pm_vec3 N)
+{
+	int c = 0;
+	for (int j = 0; j < p->n; j++)
+		c += p->on[j] == i && pm_dot(p->dir[j], N) > 0;
+	return c * p->flux / rect_area(t, i);
+}
+
+/* ---- reference searches ---- */
+
+static double
+linf(pm_vec3 a, pm_vec3 x)
+{
+	return fmax(fabs((double)a.x - x.x), fmax(fabs((double)a.y - x.y), fabs((double)a.z - x.z)));
+}
+
+static double
+l2sq(pm_vec3 a, pm_vec3 x)
+{
+	double dx = (double)a.x - x.x, dy = (double)a.y - x.y, dz = (double)a.z - x.z;
+	return dx * dx + dy * dy + dz * dz;
+}
+
+/* The k nearest (ties by index), brute force; returns how many. */
+static int
+knn(const tphotons *p, pm_vec3 x, int k, double (*dist)(pm_vec3, pm_vec3), int *out, double *dfar)
+{
+	static double bd[4096];
+	int m = 0;
+	for (int i = 0; i < p->n; i++) {
+		double d = dist(p->pos[i], x);
+		if (m == k && !(d < bd[m - 1]))
+			continue;
+		int j = m < k ? m++ : m - 1;
+		while (j > 0 && bd[j - 1] > d) {
+			bd[j] = bd[j - 1];
+			out[j] = out[j - 1];
+			j--;
+		}
+		bd[j] = d;
+		out[j] = i;
+	}
+	*dfar = m ? bd[m - 1] : 0;
+	return m;
+}
+
+typedef struct est {
+	double L;            /* one channel of radiance */
+	pm_comp_stats st;
+} est;
+
+/* The compensated estimate for Lambertian rho: rho/pi * flux * sum w. */
+static est
+comp(const pm_polyindex *pi, const tphotons *p, pm_vec3 x, pm_vec3 n, int k)
+{
+	static int idx[4096];
+	static pm_vec3 pos[4096], dir[4096];
+	static double w[4096];
+	pm_comp_scratch *sc = pm_comp_scratch_new(k);
+	est e = {0};
+	double dfar;
+	int m = knn(p, x, k, linf, idx, &dfar);
+	for (int i = 0; i < m; i++) {
+		pos[i] = p->pos[idx[i]];
+		dir[i] = p->dir[idx[i]];
+	}
+	pm_comp_weights(pi, x, n, pos, dir, m, m < k, sc, w, &e.st);
+	double s = 0;
+	for (int i = 0; i < m; i++) {
+		CHECKF(isfinite(w[i]) && w[i] >= 0, "w[%d]=%g", i, w[i]);
+		s += w[i];
+	}
+	e.L = RHO / PM_PI * p->flux * s;
+	pm_comp_scratch_free(sc);
+	return e;
+}
+
+/* Jensen's classical estimate: k nearest in a sphere, photons in front of n. */
+static double
+classical(const tphotons *p, pm_vec3 x, pm_vec3 n, int k)
+{
+	static int idx[4096];
+	double r2, s = 0;
+	int m = knn(p, x, k, l2sq, idx, &r2);
+	for (int i = 0; i < m; i++)
+		if (pm_dot(p->dir[idx[i]], n) > 0)
+			s += p->flux;
+	return r2 > 0 ? RHO / PM_PI * s / (PM_PI * r2) : 0;
+}
+
+static pm_polyindex *
+index_of(const tscene *t)
+{
+	pm_polyindex *pi;
+	pm_error err;
+	if (pm_polyindex_build(&pi, &t->s, t->verts, &err) != 0) {
+		printf("# polyindex: %s\n", err.msg);
+		exit(1);
+	}
+	return pi;
+}
+
+#define GOOD(L) (isfinite(L) && (L) >= 0)
+
+static pm_vec3
+unit(double x, double y, double z)
+{
+	double l = sqrt(x * x + y * y + z * z);
+	return pm_v3((float)(x / l), (float)(y / l), (float)(z / l));
+}
+
+static const pm_vec3 UP = {0, 0, 1};
+
+/* ---- flat floor ---- */
+
+/* 20000 photons on a 2 x 2 floor, one direction or cosine-distributed ones:
+ * the mean over 100 well separated query points is within 5% of rho E / pi
+ * (one estimate's spread is about 1/sqrt(k) = 14%, the mean's 1.4%). */
+static void
+floor_case(int solid, int random_dirs)
+{
+	tscene t;
+	tphotons p = {0};
+	pm_rng r = pm_rng_seed(1, (uint64_t)(solid * 2 + random_dirs));
+	ts_init(&t);
+	int f = ts_rect(&t, ts_object(&t, solid, 0), pm_v3(-1, -1, 0), pm_v3(2, 0, 0), pm_v3(0, 2, 0));
+	p.flux = 1e-3;
+	if (!random_dirs)
+		tp_rect(&p, &t, f, 20000, unit(0.3, 0.2, 0.9), &r, 0);
+	else
+		for (int i = 0; i < 20000; i++) {
+			pm_vec3 d = pm_sample_cosine(UP, pm_rng_f(&r), pm_rng_f(&r));
+			tp_rect(&p, &t, f, 1, d, &r, 0);
+		}
+	pm_polyindex *pi = index_of(&t);
+	double want = RHO / PM_PI * irradiance(&p, &t, f, UP), sum = 0;
+	int n = 0, opened = 0;
+	for (int i = 0; i < 10; i++)
+		for (int j = 0; j < 10; j++) {
+			pm_vec3 x = pm_v3(-0.45f + 0.1f * i, -0.45f + 0.1f * j, 0);
+			est e = comp(pi, &p, x, UP, K);
+			CHECKF(GOOD(e.L), "L=%g", e.L);
+			CHECKF(e.st.polys == 1 && e.st.skipped == 0, "polys=%d skipped=%d", e.st.polys, e.st.skipped);
+			opened += !e.st.closed && e.st.shell >= 1;
+			sum += e.L;
+			n++;
+		}
+	CHECKF(fabs(sum / n / want - 1) < 0.05, "mean/want=%g", sum / n / want);
+	CHECKF(opened == n, "open cubes %d of %d", opened, n);
+	pm_polyindex_free(pi);
+	tp_free(&p);
+}
+
+TEST(floor_one_direction) { floor_case(0, 0); floor_case(1, 0); }
+TEST(floor_random_directions) { floor_case(0, 1); floor_case(1, 1); }
+
+/* ---- concave edge: floor and wall ---- */
+
+/* A beam 5 degrees off vertical lights a floor (z = 0, x > 0) and a wall
+ * (x = 0): at x on the edge line the floor's radiance is rho E_f / pi. The
+ * compensated mean is within 10%; the classical one, which spreads the
+ * floor's photons over a whole disc of which half is wall, is about
+ * (E_f + E_w) / (2 E_f) = 0.54 of it. */
+TEST(concave_edge)
+{
+	double sc = 0, cl = 0, want = 0;
+	int n = 0;
+	for (int seed = 0; seed < 4; seed++) {
+		tscene t;
+		tphotons p = {0};
+		pm_rng r = pm_rng_seed(2, (uint64_t)seed);
+		ts_init(&t);
+		int o = ts_object(&t, 0, 0);
+		int f = ts_rect(&t, o, pm_v3(0, -2, 0), pm_v3(2, 0, 0), pm_v3(0, 4, 0));
+		int w = ts_rect(&t, o, pm_v3(0, -2, 0), pm_v3(0, 4, 0), pm_v3(0, 0, 2));
+		double a = 5 * PM_PI / 180;
+		p.flux = 1e-3;
+		tp_beam(&p, &t, 3u, unit(sin(a), 0, cos(a)), 5000, &r, 0);
+		pm_polyindex *pi = index_of(&t);
+		want = RHO / PM_PI * irradiance(&p, &t, f, UP);
+		CHECK(irradiance(&p, &t, w, pm_v3(1, 0, 0)) > 0);
+		for (int i = 0; i <= 20; i++) {
+			pm_vec3 x = pm_v3(0, -1.5f + 0.15f * i, 0);
+			est e = comp(pi, &p, x, UP, K);
+			double c = classical(&p, x, UP, K);
+			CHECKF(GOOD(e.L) && GOOD(c), "L=%g classical=%g", e.L, c);
+			CHECKF(e.st.polys == 2, "polys=%d", e.st.polys);
+			sc += e.L / want;
+			cl += c / want;
+			n++;
+		}
+		pm_polyindex_free(pi);
+		tp_free(&p);
+	}
+	CHECKF(fabs(sc / n - 1) < 0.10, "compensated mean/want=%g", sc / n);
+	CHECKF(cl / n > 0.4 && cl / n < 0.7, "classical mean/want=%g", cl / n);
+}
+
+/* The same edge lit from 8 random directions in the quarter-space in front
+ * of both surfaces; x on the edge and also on the wall (n = +x). */
+TEST(concave_edge_random_directions)
+{
+	double sf = 0, sw = 0;
+	int n = 0;
+	for (int seed = 0; seed < 4; seed++) {
+		tscene t;
+		tphotons p = {0};
+		pm_rng r = pm_rng_seed(3, (uint64_t)seed);
+		ts_init(&t);
+		int o = ts_object(&t, 0, 0);
+		int f = ts_rect(&t, o, pm_v3(0, -2, 0), pm_v3(2, 0, 0), pm_v3(0, 4, 0));
+		int w = ts_rect(&t, o, pm_v3(0, -2, 0), pm_v3(0, 4, 0), pm_v3(0, 0, 2));
+		p.flux = 1e-3;
+		for (int d = 0; d < 8; d++)
+			tp_beam(&p, &t, 3u, unit(0.05 + rnd(&r), rnd(&r) - 0.5, 0.05 + rnd(&r)), 700, &r, 0);
+		pm_polyindex *pi = index_of(&t);
+		pm_vec3 X = {1, 0, 0};
+		double wf = RHO / PM_PI * irradiance(&p, &t, f, UP);
+		double ww = RHO / PM_PI * irradiance(&p, &t, w, X);
+		for (int i = 0; i <= 20; i++) {
+			pm_vec3 x = pm_v3(0, -1.5f + 0.15f * i, 0);
+			est ef = comp(pi, &p, x, UP, K), ew = comp(pi, &p, x, X, K);
+			CHECKF(GOOD(ef.L) && GOOD(ew.L), "L=%g %g", ef.L, ew.L);
+			sf += ef.L / wf;
+			sw += ew.L / ww;
+			n++;
+		}
+		pm_polyindex_free(pi);
+		tp_free(&p);
+	}
+	CHECKF(fabs(sf / n - 1) < 0.08, "floor mean/want=%g", sf / n);
+	CHECKF(fabs(sw / n - 1) < 0.08, "wall mean/want=%g", sw / n);
+}
+
+/* ---- room corner ---- */
+
+/* Three walls meeting at the origin, lit by three beams from the octant in
+ * front of all of them; x exactly in the corner. One estimate per photon
+ * set, averaged over 60 sets. The classical estimate sees a quarter disc of
+ * each surface: about (E_f + E_x + E_y) / (4 E_f). */
+TEST(room_corner)
+{
+	double sc = 0, cl = 0;
+	int n = 0;
+	for (int seed = 0; seed < 60; seed++) {
+		tscene t;
+		tphotons p = {0};
+		pm_rng r = pm_rng_seed(4, (uint64_t)seed);
+		ts_init(&t);
+		int o = ts_object(&t, 0, 0);
+		int f = ts_rect(&t, o, pm_v3(0, 0, 0), pm_v3(0.5f, 0, 0), pm_v3(0, 0.5f, 0));
+		ts_rect(&t, o, pm_v3(0, 0, 0), pm_v3(0, 0.5f, 0), pm_v3(0, 0, 0.5f));
+		ts_rect(&t, o, pm_v3(0, 0, 0), pm_v3(0, 0, 0.5f), pm_v3(0.5f, 0, 0));
+		p.flux = 1e-3;
+		tp_beam(&p, &t, 7u, unit(0.2, 0.3, 1), 3000, &r, 0);
+		tp_beam(&p, &t, 7u, unit(1, 0.5, 1), 3000, &r, 0);
+		tp_beam(&p, &t, 7u, unit(0.4, 1, 0.3), 3000, &r, 0);
+		pm_polyindex *pi = index_of(&t);
+		double want = RHO / PM_PI * irradiance(&p, &t, f, UP);
+		est e = comp(pi, &p, pm_v3(0, 0, 0), UP, K);
+		double c = classical(&p, pm_v3(0, 0, 0), UP, K);
+		CHECKF(GOOD(e.L), "L=%g", e.L);
+		CHECKF(e.st.polys == 3, "polys=%d", e.st.polys);
+		sc += e.L / want;
+		cl += c / want;
+		n++;
+		pm_polyindex_free(pi);
+		tp_free(&p);
+	}
+	CHECKF(fabs(sc / n - 1) < 0.08, "compensated mean/want=%g", sc / n);
+	CHECKF(cl / n < 0.75, "classical mean/want=%g", cl / n);
+}
+
+/* ---- convex edge: the edge of a solid table ---- */
+
+/* Top z = 0 (x < 0) and side x = 0 (z < 0) of one solid. Beams: one facing
+ * both faces, one facing only the top (its side-facing cosine is negative:
+ * the solid's side must not count), one facing only the side. x on the edge,
+ * n = +z: rho E_top / pi. As an open sheet the side would wrongly take a
+ * share of the second beam's photons; that is checked to be off. */
+static double
+table_edge(int solid)
+{
+	double s = 0;
+	int n = 0;
+	for (int seed = 0; seed < 4; seed++) {
+		tscene t;
+		tphotons p = {0};
+		pm_rng r = pm_rng_seed(5, (uint64_t)seed);
+		ts_init(&t);
+		int o = ts_object(&t, solid, 0);
+		int top = ts_rect(&t, o, pm_v3(-2, -2, 0), pm_v3(2, 0, 0), pm_v3(0, 4, 0));
+		ts_rect(&t, o, pm_v3(0, -2, -2), pm_v3(0, 4, 0), pm_v3(0, 0, 2));
+		p.flux = 1e-3;
+		tp_beam(&p, &t, 3u, unit(1, 0, 1), 2500, &r, 0);
+		tp_beam(&p, &t, 1u, unit(-1.5, 0.3, 1), 2500, &r, 0);
+		tp_beam(&p, &t, 2u, unit(1, -0.2, -0.3), 2500, &r, 0);
+		pm_polyindex *pi = index_of(&t);
+		double want = RHO / PM_PI * irradiance(&p, &t, top, UP);
+		for (int i = 0; i <= 20; i++) {
+			est e = comp(pi, &p, pm_v3(0, -1.5f + 0.15f * i, 0), UP, K);
+			CHECKF(GOOD(e.L), "L=%g", e.L);
+			s += e.L / want;
+			n++;
+		}
+		pm_polyindex_free(pi);
+		tp_free(&p);
+	}
+	return s / n;
+}
+
+TEST(convex_edge_solid)
+{
+	double a = table_edge(1), b = table_edge(0);
+	CHECKF(fabs(a - 1) < 0.08, "solid mean/want=%g", a);
+	CHECKF(b < 0.9, "as a sheet mean/want=%g (should be off)", b);
+}
+
+/* ---- thin walls: no light through ---- */
+
+/* A two-sided sheet with four times as many photons under it as on it; a
+ * thin solid slab (faces 2e-4 apart, far thinner than the cube) the same.
+ * Each side's estimate is that side's rho E / pi: no leak. */
+TEST(thin_walls)
+{
+	for (int solid = 0; solid <= 1; solid++) {
+		double st = 0, sb = 0, wt = 0, wb = 0;
+		int n = 0;
+		for (int seed = 0; seed < 6; seed++) {
+			tscene t;
+			tphotons p = {0};
+			pm_rng r = pm_rng_seed(6, (uint64_t)(seed + 10 * solid));
+			float e = solid ? 1e-4f : 0;
+			ts_init(&t);
+			int o = ts_object(&t, solid, 0);
+			int top = ts_rect(&t, o, pm_v3(-1, -1, e), pm_v3(2, 0, 0), pm_v3(0, 2, 0));
+			int bot = top;
+			if (solid)
+				bot = ts_rect(&t, o, pm_v3(-1, -1, -e), pm_v3(0, 2, 0), pm_v3(2, 0, 0));
+			p.flux = 1e-3;
+			tp_rect(&p, &t, top, 4000, unit(0.2, 0.1, 1), &r, 0);
+			tp_rect(&p, &t, bot, 16000, unit(-0.3, 0, -1), &r, 0);
+			pm_polyindex *pi = index_of(&t);
+			wt = RHO / PM_PI * irradiance(&p, &t, top, UP);
+			wb = RHO / PM_PI * irradiance(&p, &t, bot, pm_v3(0, 0, -1));
+			for (int i = 0; i < 7; i++)
+				for (int j = 0; j < 7; j++) {
+					float x = -0.6f + 0.2f * i, y = -0.6f + 0.2f * j;
+					est a = comp(pi, &p, pm_v3(x, y, e), UP, K);
+					est b = comp(pi, &p, pm_v3(x, y, -e), pm_v3(0, 0, -1), K);
+					CHECKF(GOOD(a.L) && GOOD(b.L), "L=%g %g", a.L, b.L);
+					st += a.L;
+					sb += b.L;
+					n++;
+				}
+			pm_polyindex_free(pi);
+			tp_free(&p);
+		}
+		CHECKF(fabs(st / n / wt - 1) < 0.06, "solid=%d top mean/want=%g", solid, st / n / wt);
+		CHECKF(fabs(sb / n / wb - 1) < 0.06, "solid=%d bottom mean/want=%g", solid, sb / n / wb);
+	}
+}
+
+/* ---- photons on the cube's boundary ---- */
+
+/* x on the floor 0.1 from a wall at x = 0.1, photon density such that the
+ * cube reaches the wall's plane before it holds k floor photons (about 35
+ * floor photons within 0.1, 35 on the wall's square): all the wall photons
+ * near x are then at exactly distance 0.1 and the search keeps only some of
+ * them. The estimate sets them aside and takes the open
+ * cube: exactly rho/pi * flux * (floor photons nearer than 0.1) / (0.2)^2.
+ * Averaged over those queries it is rho E_f / pi (a closed cube, counting the
+ * wall's area with only part of its photons, reads over a quarter low). */
+TEST(boundary_shell)
+{
+	double s = 0;
+	int n = 0, shells = 0, reach = 0;
+	static int idx[K];
+	for (int seed = 0; seed < 12; seed++) {
+		tscene t;
+		tphotons p = {0};
+		pm_rng r = pm_rng_seed(7, (uint64_t)seed);
+		ts_init(&t);
+		int o = ts_object(&t, 0, 0);
+		int f = ts_rect(&t, o, pm_v3(-1, -1, 0), pm_v3(1.1f, 0, 0), pm_v3(0, 2, 0));
+		ts_rect(&t, o, pm_v3(0.1f, 1, 0), pm_v3(0, -2, 0), pm_v3(0, 0, 1));
+		p.flux = 1e-3;
+		tp_beam(&p, &t, 3u, unit(-2, 0, 1), 875 * sqrt(5.0), &r, 0);
+		pm_polyindex *pi = index_of(&t);
+		double want = RHO / PM_PI * irradiance(&p, &t, f, UP);
+		for (int i = 0; i < 30; i++) {
+			pm_vec3 x = pm_v3(0, -0.87f + 0.06f * i, 0);
+			est e = comp(pi, &p, x, UP, K);
+			double dfar;
+			CHECKF(GOOD(e.L), "L=%g", e.L);
+			knn(&p, x, K, linf, idx, &dfar);
+			reach += dfar == (double)0.1f;
+			s += e.L / want;
+			n++;
+			/* the wall's shell (a floor photon within the shell's width
+			 * of 0.1 would join it and shrink the cube a little) */
+			if (e.st.shell < 2 || e.st.h != (double)0.1f)
+				continue;
+			shells++;
+			int in = 0;
+			for (int j = 0; j < p.n; j++)
+				in += p.on[j] == f && linf(p.pos[j], x) < 0.1f;
+			double h = 0.1f, exact = RHO / PM_PI * p.flux * in / (4 * h * h);
+			CHECKF(e.st.h == h && !e.st.closed, "h=%.9g closed=%d", e.st.h, e.st.closed);
+			CHECKF(fabs(e.L / exact - 1) < 1e-9, "L=%.12g exact=%.12g", e.L, exact);
+		}
+		pm_polyindex_free(pi);
+		tp_free(&p);
+	}
+	CHECKF(reach >= n * 9 / 10 && shells >= n * 3 / 4, "of %d estimates %d reached the wall, %d had its shell",
+	       n, reach, shells);
+	CHECKF(fabs(s / n - 1) < 0.06, "mean/want=%g", s / n);
+}
+
+/* ---- degenerate cubes and photons ---- */
+
+TEST(all_photons_at_one_point)
+{
+	tscene t;
+	tphotons p = {0};
+	ts_init(&t);
+	ts_rect(&t, ts_object(&t, 0, 0), pm_v3(-1, -1, 0), pm_v3(2, 0, 0), pm_v3(0, 2, 0));
+	pm_polyindex *pi = index_of(&t);
+	pm_vec3 x = pm_v3(0.25f, -0.5f, 0);
+	p.flux = 1e-3;
+	for (int i = 0; i < 80; i++)
+		tp_add(&p, x, unit(0.1, 0.2, 1), 0);
+	est e = comp(pi, &p, x, UP, K);
+	/* the minimum cube: half-size 1e-6 of the geometry's size 2 */
+	CHECKF(GOOD(e.L) && e.L > 0, "L=%g", e.L);
+	CHECKF(e.st.closed && e.st.h == PM_COMP_HMIN_REL * 2, "closed=%d h=%g", e.st.closed, e.st.h);
+	double h = e.st.h, want = RHO / PM_PI * p.flux * K / (4 * h * h);
+	CHECKF(fabs(e.L / want - 1) < 1e-9, "L=%g want=%g", e.L, want);
+	/* all at one point away from x: every photon in the shell, closed */
+	tphotons q = {0};
+	q.flux = 1e-3;
+	for (int i = 0; i < 80; i++)
+		tp_add(&q, pm_v3(0.3f, -0.5f, 0), unit(0.1, 0.2, 1), 0);
+	e = comp(pi, &q, x, UP, K);
+	CHECKF(GOOD(e.L) && e.L > 0 && e.st.closed && e.st.shell == 0, "L=%g closed=%d", e.L, e.st.closed);
+	/* at the world origin, where there is no scale from the position */
+	tphotons z = {0};
+	z.flux = 1;
+	for (int i = 0; i < 60; i++)
+		tp_add(&z, pm_v3(0, 0, 0), UP, 0);
+	e = comp(pi, &z, pm_v3(0, 0, 0), UP, K);
+	CHECKF(GOOD(e.L) && e.L > 0, "L=%g", e.L);
+	pm_polyindex_free(pi);
+	tp_free(&p);
+	tp_free(&q);
+	tp_free(&z);
+}
+
+/* Photons arriving in front of n that no polygon in the cube faces cannot
+ * be spread and are skipped (and counted); the rest are unaffected. */
+TEST(no_target_area_skipped)
+{
+	tscene t, empty;
+	tphotons p = {0};
+	pm_rng r = pm_rng_seed(8, 0);
+	ts_init(&t);
+	int f = ts_rect(&t, ts_object(&t, 1, 0), pm_v3(-1, -1, 0), pm_v3(2, 0, 0), pm_v3(0, 2, 0));
+	p.flux = 1e-3;
+	/* a third from straight above; a third from below the solid floor but
+	 * in front of the tilted shading normal n (A_p = 0); a third skimming
+	 * the floor at Psi.N_g = 1e-12, whose A_p is next to nothing while
+	 * Psi.n = 0.7 (spread over it, each would be 1e12 times too bright) */
+	for (int i = 0; i < 6000; i++)
+		tp_rect(&p, &t, f, 1, i % 3 == 0 ? UP : i % 3 == 1 ? unit(1, 0, -0.2) : pm_v3(1, 0, 1e-12f), &r, 0);
+	pm_vec3 n = unit(1, 0, 1), x = pm_v3(0.1f, 0.2f, 0);
+	pm_polyindex *pi = index_of(&t);
+	est e = comp(pi, &p, x, n, K);
+	int good = 0, bad = 0;
+	double dfar;
+	int idx[K];
+	knn(&p, x, K, linf, idx, &dfar);
+	for (int i = 0; i < K; i++) {
+		if (linf(p.pos[idx[i]], x) >= e.st.h)
+			continue;       /* the shell */
+		if (p.dir[idx[i]].z == 1)
+			good++;
+		else
+			bad++;
+	}
+	double h = e.st.h, want = RHO / PM_PI * p.flux * good * (1 / sqrt(2.0)) / (4 * h * h);
+	CHECKF(e.st.skipped == bad && e.st.front == good + bad, "skipped=%d front=%d good=%d bad=%d",
+	       e.st.skipped, e.st.front, good, bad);
+	CHECKF(bad > 0 && fabs(e.L / want - 1) < 1e-6, "L=%g want=%g", e.L, want);
+	/* no polygons at all: everything skipped, 0 */
+	ts_init(&empty);
+	pm_polyindex *none = index_of(&empty);
+	e = comp(none, &p, x, UP, K);
+	CHECKF(e.L == 0 && e.st.skipped == e.st.front && e.st.front > 0, "L=%g skipped=%d front=%d",
+	       e.L, e.st.skipped, e.st.front);
+	/* a strong (mirror) surface is no photon surface: the same */
+	tscene m;
+	ts_init(&m);
+	ts_rect(&m, ts_object(&m, 0, 1), pm_v3(-1, -1, 0), pm_v3(2, 0, 0), pm_v3(0, 2, 0));
+	pm_polyindex *mi = index_of(&m);
+	e = comp(mi, &p, x, UP, K);
+	CHECKF(e.L == 0 && e.st.polys == 0, "L=%g polys=%d", e.L, e.st.polys);
+	pm_polyindex_free(pi);
+	pm_polyindex_free(none);
+	pm_polyindex_free(mi);
+	tp_free(&p);
+}
+
+/* Photons at Psi.N = 1e-6: on a plain floor each still brings flux / A
+ * (the cosine cancels); at a floor-wall edge the wall takes nearly all of
+ * their target area, and the value matches eq. 3 worked by hand. */
+TEST(grazing_photons)
+{
+	for (int solid = 0; solid <= 1; solid++) {
+		tscene t;
+		tphotons p = {0};
+		pm_rng r = pm_rng_seed(9, (uint64_t)solid);
+		ts_init(&t);
+		int o = ts_object(&t, solid, 0);
+		int f = ts_rect(&t, o, pm_v3(-1, -1, 0), pm_v3(2, 0, 0), pm_v3(0, 2, 0));
+		pm_vec3 g = pm_v3(-1, 0, 1e-6f);     /* |g| = 1 in float */
+		p.flux = 1e-3;
+		tp_rect(&p, &t, f, 20000, g, &r, 0);
+		pm_polyindex *pi = index_of(&t);
+		pm_vec3 x = pm_v3(0.1f, 0.3f, 0);
+		est e = comp(pi, &p, x, UP, K);
+		int used = e.st.found - e.st.shell;
+		double h = e.st.h, want = RHO / PM_PI * p.flux * used / (4 * h * h);
+		CHECKF(GOOD(e.L) && fabs(e.L / want - 1) < 1e-6, "solid=%d L=%g want=%g", solid, e.L, want);
+		pm_polyindex_free(pi);
+		tp_free(&p);
+	}
+	/* A floor tilted by 9e-7 rad from the shading normal n = +z, photons at
+	 * Psi.n = 1e-6: Psi.N_g is about 1e-7, and using it in A_p but Psi.n in
+	 * the numerator would read 10 times too bright. Taken as the plane of x,
+	 * each photon brings flux / A_g. */
+	{
+		tscene t;
+		tphotons p = {0};
+		pm_rng r = pm_rng_seed(9, 5);
+		const float d = 9e-7f;
+		pm_vec3 q[4] = {{-1, -1, d}, {1, -1, -d}, {1, 1, -d}, {-1, 1, d}};
+		ts_init(&t);
+		ts_poly(&t, ts_object(&t, 0, 0), 4, q);
+		t.ro[0] = q[0];
+		t.ru[0] = pm_sub(q[1], q[0]);
+		t.rv[0] = pm_sub(q[3], q[0]);
+		t.nrect = 1;
+		p.flux = 1e-3;
+		tp_rect(&p, &t, 0, 20000, pm_v3(-1, 0, 1e-6f), &r, 0);
+		pm_polyindex *pi = index_of(&t);
+		pm_vec3 x = pm_v3(0.1f, 0.3f, -0.1f * d);
+		est e = comp(pi, &p, x, UP, K);
+		double h = e.st.h, used = e.st.found - e.st.shell;
+		double want = RHO / PM_PI * p.flux * used / (4 * h * h / cos((double)d));
+		CHECKF(GOOD(e.L) && fabs(e.L / want - 1) < 1e-6, "tilted L=%g want=%g", e.L, want);
+		pm_polyindex_free(pi);
+		tp_free(&p);
+	}
+	/* the edge: floor (z = 0, x > 0) and wall (x = 0, facing +x) */
+	tscene t;
+	tphotons p = {0};
+	pm_rng r = pm_rng_seed(9, 7);
+	ts_init(&t);
+	int o = ts_object(&t, 0, 0);
+	int f = ts_rect(&t, o, pm_v3(0, -1, 0), pm_v3(1, 0, 0), pm_v3(0, 2, 0));
+	int w = ts_rect(&t, o, pm_v3(0, -1, 0), pm_v3(0, 2, 0), pm_v3(0, 0, 1));
+	pm_vec3 g = pm_v3(1, 0, 1e-6f);
+	p.flux = 1e-3;
+	tp_rect(&p, &t, f, 20, g, &r, 0);
+	tp_rect(&p, &t, w, 20000, g, &r, 0);
+	pm_polyindex *pi = index_of(&t);
+	est e = comp(pi, &p, pm_v3(0, 0, 0), UP, K);
+	double h = e.st.h, used = e.st.found - e.st.shell;
+	double c = 1e-6f / sqrt(1 + 1e-12);
+	double want = RHO / PM_PI * p.flux * used * c / (2 * h * h * c + 2 * h * h);
+	CHECKF(GOOD(e.L) && e.L > 0 && fabs(e.L / want - 1) < 1e-6, "edge L=%g want=%g", e.L, want);
+	pm_polyindex_free(pi);
+	tp_free(&p);
+}
+
+/* Fewer photons than k: all of them count, in the closed cube just around
+ * the farthest. An empty photon set gives 0. */
+TEST(fewer_photons_than_k)
+{
+	tscene t;
+	tphotons p = {0};
+	pm_rng r = pm_rng_seed(10, 0);
+	ts_init(&t);
+	int f = ts_rect(&t, ts_object(&t, 0, 0), pm_v3(-1, -1, 0), pm_v3(2, 0, 0), pm_v3(0, 2, 0));
+	pm_polyindex *pi = index_of(&t);
+	pm_vec3 x = pm_v3(0.05f, 0, 0);
+	est e = comp(pi, &p, x, UP, K);
+	CHECKF(e.L == 0 && e.st.found == 0, "empty L=%g", e.L);
+	p.flux = 1e-3;
+	tp_rect(&p, &t, f, 10, unit(0.3, 0, 1), &r, 0);
+	e = comp(pi, &p, x, UP, K);
+	double hk = 0;
+	for (int i = 0; i < p.n; i++)
+		hk = fmax(hk, linf(p.pos[i], x));
+	double h = hk * (1 + PM_COMP_TAU_REL);
+	double A = (fmin(1, x.x + h) - fmax(-1, x.x - h)) * (fmin(1, h) - fmax(-1, -h));
+	double want = RHO / PM_PI * p.flux * 10 / A;
+	CHECKF(e.st.closed && e.st.found == 10 && e.st.shell == 0, "closed=%d found=%d", e.st.closed, e.st.found);
+	CHECKF(fabs(e.st.h / h - 1) < 1e-12, "h=%g want %g", e.st.h, h);
+	CHECKF(fabs(e.L / want - 1) < 1e-9, "L=%g want=%g", e.L, want);
+	pm_polyindex_free(pi);
+	tp_free(&p);
+}
+
+/* ---- invariance ---- */
+
+/* The concave edge moved by 1e4 and scaled by 1e-3 and 1e3 (flux scaled by
+ * the square, so irradiance stays): each estimate the same to 1e-4. Photon
+ * positions lie on a 2^-10 grid so that the moved ones are exact floats. */
+static void
+edge_scene(tscene *t, tphotons *p, double s, pm_vec3 off)
+{
+	pm_rng r = pm_rng_seed(11, 0);
+	tscene base;
+	ts_init(&base);
+	int o = ts_object(&base, 0, 0);
+	ts_rect(&base, o, pm_v3(0, -2, 0), pm_v3(2, 0, 0), pm_v3(0, 4, 0));
+	ts_rect(&base, o, pm_v3(0, -2, 0), pm_v3(0, 4, 0), pm_v3(0, 0, 2));
+	tphotons b = {0};
+	b.flux = 1e-3;
+	tp_beam(&b, &base, 3u, unit(0.5, 0.2, 1), 4000, &r, 1.0 / 1024);
+	tp_beam(&b, &base, 3u, unit(1, -0.4, 0.3), 4000, &r, 1.0 / 1024);
+	ts_init(t);
+	o = ts_object(t, 0, 0);
+	for (int i = 0; i < base.nrect; i++) {
+		pm_vec3 c = base.ro[i];
+		ts_rect(t, o, pm_v3((float)(c.x * s + off.x), (float)(c.y * s + off.y), (float)(c.z * s + off.z)),
+		        pm_scale(base.ru[i], (float)s), pm_scale(base.rv[i], (float)s));
+	}
+	p->flux = b.flux * s * s;
+	for (int i = 0; i < b.n; i++) {
+		pm_vec3 c = b.pos[i];
+		tp_add(p, pm_v3((float)(c.x * s + off.x), (float)(c.y * s + off.y), (float)(c.z * s + off.z)),
+		       b.dir[i], b.on[i]);
+	}
+	tp_free(&b);
+}
+
+TEST(translation_and_scale)
+{
+	const double S[4] = {1, 1, 1e-3, 1e3};
+	const pm_vec3 OFF[4] = {{0, 0, 0}, {1e4, -1e4, 1e4}, {0, 0, 0}, {0, 0, 0}};
+	double L[4][10];
+	for (int c = 0; c < 4; c++) {
+		tscene t;
+		tphotons p = {0};
+		edge_scene(&t, &p, S[c], OFF[c]);
+		pm_polyindex *pi = index_of(&t);
+		for (int i = 0; i < 10; i++) {
+			/* on the edge and beside it, on the 2^-10 grid */
+			double y = (nearbyint((-1 + 0.2 * i) * 1024) + 1) / 1024, xx = i & 1 ? 0 : 0.0625;
+			pm_vec3 x = pm_v3((float)(xx * S[c] + OFF[c].x), (float)(y * S[c] + OFF[c].y), OFF[c].z);
+			L[c][i] = comp(pi, &p, x, UP, K).L;
+			CHECKF(GOOD(L[c][i]) && L[c][i] > 0, "case %d L=%g", c, L[c][i]);
+		}
+		pm_polyindex_free(pi);
+		tp_free(&p);
+	}
+	for (int c = 1; c < 4; c++)
+		for (int i = 0; i < 10; i++)
+			CHECKF(fabs(L[c][i] / L[0][i] - 1) < 1e-4, "case %d point %d: %.9g vs %.9g",
+			       c, i, L[c][i], L[0][i]);
+}
+
+/* ---- the polygon index ---- */
+
+static void
+count_hit(void *ctx, uint32_t g)
+{
+	((int *)ctx)[g]++;
+}
+
+/* Random triangles, some on a mirror: every photon-surface triangle whose box
+ * meets a query cube is reported exactly once, none that misses it by more
+ * than float rounding, no mirror. */
+TEST(polyindex_matches_brute_force)
+{
+	enum { NT = 60 };
+	tscene t;
+	pm_rng r = pm_rng_seed(12, 0);
+	ts_init(&t);
+	int od = ts_object(&t, 0, 0), om = ts_object(&t, 1, 1);
+	for (int i = 0; i < NT; i++) {
+		pm_vec3 a = pm_v3((float)(10 * rnd(&r)), (float)(10 * rnd(&r)), (float)(10 * rnd(&r)));
+		pm_vec3 v[3] = {a, pm_add(a, pm_v3((float)rnd(&r), 0.1f, 0)),
+		                pm_add(a, pm_v3(0, (float)rnd(&r), (float)rnd(&r)))};
+		if (i % 7 == 3)   /* duplicates, for the median split */
+			v[0] = t.verts[0], v[1] = t.verts[1], v[2] = t.verts[2];
+		ts_poly(&t, i % 5 == 0 ? om : od, 3, v);
+	}
+	pm_polyindex *pi = index_of(&t);
+	CHECKF(pi->nprims == NT - 12, "nprims=%u", pi->nprims);
+	struct hits { int n[NT]; } h;
+	for (int q = 0; q < 300; q++) {
+		pm_dvec3 c = {12 * rnd(&r) - 1, 12 * rnd(&r) - 1, 12 * rnd(&r) - 1};
+		double hs = q % 3 == 0 ? 0 : 2 * rnd(&r);
+		memset(&h, 0, sizeof h);
+		pm_polyindex_cube(pi, c, hs, count_hit, h.n);
+		for (int i = 0; i < NT; i++) {
+			double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
+			for (int k = 0; k < 3; k++)
+				for (int j = 0; j < 3; j++) {
+					double v = pm_vget(t.verts[t.vidx[3 * i + j]], k);
+					lo[k] = fmin(lo[k], v);
+					hi[k] = fmax(hi[k], v);
+				}
+			double cc[3] = {c.x, c.y, c.z};
+			int in = 1, near = 1;
+			for (int k = 0; k < 3; k++) {
+				in &= lo[k] <= cc[k] + hs && hi[k] >= cc[k] - hs;
+				near &= lo[k] <= cc[k] + hs + 1e-5 && hi[k] >= cc[k] - hs - 1e-5;
+			}
+			int mirror = t.obj[i] == (uint32_t)om;
+			CHECKF(h.n[i] <= 1, "query %d: triangle %d reported %d times", q, i, h.n[i]);
+			CHECKF(!mirror || h.n[i] == 0, "query %d: mirror %d reported", q, i);
+			CHECKF(mirror || !in || h.n[i] == 1, "query %d: triangle %d missed", q, i);
+			CHECKF(near || h.n[i] == 0, "query %d: triangle %d far but reported", q, i);
+		}
+	}
+	pm_polyindex_free(pi);
+	/* a bad polygon is refused with a message */
+	pm_polyindex *bad;
+	pm_error err;
+	t.vidx[4] = MAXV + 5;
+	CHECK(pm_polyindex_build(&bad, &t.s, t.verts, &err) == -1 && bad == NULL);
+	CHECKF(strstr(err.msg, "polygon 1: vertex") != NULL, "msg=%s", err.msg);
+}
+
+/* ---- the whole estimate ---- */
+
+/* pm_estimate_compensated with a real kd-tree, packed photons and the
+ * Lambertian BSDF gives what the weights and the decoded photons give; an
+ * empty map gives 0; info reports the cube and the count. */
+TEST(full_estimate_matches_core)
+{
+	tscene t;
+	tphotons p = {0};
+	pm_rng r = pm_rng_seed(13, 0);
+	ts_init(&t);
+	int o = ts_object(&t, 0, 0);
+	ts_rect(&t, o, pm_v3(0, -2, 0), pm_v3(2, 0, 0), pm_v3(0, 4, 0));
+	ts_rect(&t, o, pm_v3(0, -2, 0), pm_v3(0, 4, 0), pm_v3(0, 0, 2));
+	p.flux = 1;
+	tp_beam(&p, &t, 3u, unit(0.5, 0.2, 1), 3000, &r, 0);
+	tp_beam(&p, &t, 3u, unit(1, -0.4, 0.3), 3000, &r, 0);
+	pm_polyindex *pi = index_of(&t);
+
+	pm_photons map;
+	memset(&map, 0, sizeof map);
+	map.p = malloc(p.n * sizeof *map.p);
+	map.h.count = (uint64_t)p.n;
+	map.h.emitted = 1000;
+	for (int i = 0; i < p.n; i++) {
+		pm_vec3 N = p.on[i] == 0 ? UP : pm_v3(1, 0, 0);
+		pm_photon_pack(&map.p[i], p.pos[i], p.dir[i], N, pm_v3(2, 1, 0.5f));
+	}
+	pm_error err;
+	CHECK(pm_kd_build(map.p, p.n, &err) == 0);
+	/* the decoded photons, for the reference */
+	tphotons d = {0};
+	d.flux = 1;
+	for (int i = 0; i < p.n; i++)
+		tp_add(&d, pm_photon_pos(&map.p[i]), pm_photon_dir(&map.p[i]), 0);
+	pm_vec3 power = pm_photon_power(&map.p[0]);
+
+	pm_comp_scratch *sc = pm_comp_scratch_new(K);
+	for (int i = 0; i < 8; i++) {
+		/* on the floor (n = +z) or the wall (n = +x), some on the edge */
+		float y = -1 + 0.25f * i, off = i & 1 ? 0 : 0.3f;
+		pm_vec3 x = i & 2 ? pm_v3(off, y, 0) : pm_v3(0, y, off);
+		pm_vec3 n = i & 2 ? UP : pm_v3(1, 0, 0);
+		pm_estimate_info info;
+		pm_vec3 L = pm_estimate_compensated(pi, &map, x, n, n, &t.mats[0], K, sc, &info);
+		est e = comp(pi, &d, x, n, K);
+		double f = 1.0 / map.h.emitted / p.flux;   /* reference flux 1 -> power/emitted */
+		CHECKF(fabs(L.x / (e.L * power.x * f) - 1) < 1e-5, "x: %g vs %g", L.x, e.L * power.x * f);
+		CHECKF(fabs(L.z / (e.L * power.z * f) - 1) < 1e-5, "z: %g vs %g", L.z, e.L * power.z * f);
+		CHECKF(info.nphotons == K && info.size == (float)e.st.h, "info %d %g vs %g",
+		       info.nphotons, info.size, e.st.h);
+		const pm_comp_stats *st = pm_comp_last(sc);
+		CHECKF(st->found == K && st->h == e.st.h, "stats found=%d h=%g", st->found, st->h);
+	}
+	pm_photons none;
+	memset(&none, 0, sizeof none);
+	none.h.emitted = 10;
+	pm_estimate_info info;
+	pm_vec3 L = pm_estimate_compensated(pi, &none, pm_v3(0, 0, 0), UP, UP, &t.mats[0], K, sc, &info);
+	CHECK(L.x == 0 && L.y == 0 && L.z == 0 && info.nphotons == 0 && info.size == 0);
+	CHECK(pm_comp_scratch_new(0) == NULL);
+	pm_comp_scratch_free(sc);
+	free(map.p);
+	pm_polyindex_free(pi);
+	tp_free(&p);
+	tp_free(&d);
+}
+
+int
+main(void)
+{
+	RUN(floor_one_direction);
+	RUN(floor_random_directions);
+	RUN(concave_edge);
+	RUN(concave_edge_random_directions);
+	RUN(room_corner);
+	RUN(convex_edge_solid);
+	RUN(thin_walls);
+	RUN(boundary_shell);
+	RUN(all_photons_at_one_point);
+	RUN(no_target_area_skipped);
+	RUN(grazing_photons);
+	RUN(fewer_photons_than_k);
+	RUN(translation_and_scale);
+	RUN(polyindex_matches_brute_force);
+	RUN(full_estimate_matches_core);
+	return check_done();
+}
