@@ -37,4 +37,10 @@ typedef void (*pm_polyindex_fn)(void *ctx, uint32_t poly);
 void pm_polyindex_cube(const pm_polyindex *pi, pm_dvec3 c, double h,
                        pm_polyindex_fn fn, void *ctx);
 
+/* 1 if the closed cube of half-size h centred at x meets, with nonzero
+ * area, a photon-surface polygon whose plane does not pass through x: x is
+ * within one cube of an edge or corner of the geometry. pm-render's `edge`
+ * layer, the mask for error measured near edges. */
+int pm_polyindex_near_edge(const pm_polyindex *pi, pm_vec3 x, double h);
+
 #endif

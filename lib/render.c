@@ -8,6 +8,7 @@
 
 #include "bsdf.h"
 #include "camera.h"
+#include "polyindex.h"
 #include "rng.h"
 
 #define RENDER_DOMAIN 0x52454e444552ull
@@ -17,7 +18,7 @@ const char *const pm_render_chans[PM_RENDER_NCHAN] = {
 	"direct.R", "direct.G", "direct.B",
 	"indirect.R", "indirect.G", "indirect.B",
 	"specular.R", "specular.G", "specular.B",
-	"size", "count",
+	"size", "count", "edge",
 };
 
 const char *
@@ -48,7 +49,7 @@ pm_estimator_parse(const char *name)
 typedef struct sample {
 	pm_vec3 direct, indirect, specular;
 	float size;
-	int count, estimated;
+	int count, estimated, edge;
 } sample;
 
 typedef struct ctx {
@@ -173,6 +174,7 @@ trace(const ctx *c, scratch *sc, pm_vec3 o, pm_vec3 d, pm_rng *r, sample *out)
 				out->size = info.size;
 				out->count = info.nphotons;
 				out->estimated = 1;
+				out->edge = pm_polyindex_near_edge(c->pi, h.p, info.size);
 			}
 			return;
 		}
@@ -239,7 +241,7 @@ pm_render(const pm_scene *s, const pm_accel *a, const pm_lights *L,
 				pm_vec3 dsum = {0}, isum = {0}, ssum = {0};
 				double size = 0;
 				long count = 0;
-				int nest = 0;
+				int nest = 0, nedge = 0;
 				for (int k = 0; k < o->spp; k++) {
 					sample smp;
 					float sx = (float)x + pm_rng_f(&r), sy = (float)y + pm_rng_f(&r);
@@ -252,6 +254,7 @@ pm_render(const pm_scene *s, const pm_accel *a, const pm_lights *L,
 					if (smp.estimated) {
 						size += smp.size;
 						count += smp.count;
+						nedge += smp.edge;
 						nest++;
 					}
 				}
@@ -264,6 +267,7 @@ pm_render(const pm_scene *s, const pm_accel *a, const pm_lights *L,
 					ssum.x * inv, ssum.y * inv, ssum.z * inv,
 					nest ? (float)(size / nest) : 0.0f,
 					nest ? (float)count / (float)nest : 0.0f,
+					nest ? (float)nedge / (float)nest : 0.0f,
 				};
 				for (int ch = 0; ch < PM_RENDER_NCHAN; ch++)
 					img->px[(size_t)ch * npx + i] = v[ch];

@@ -30,12 +30,12 @@ typedef struct pm_render_opts {
 } pm_render_opts;
 
 /* The channels pm_render writes, in this order; see formats/image.md. */
-#define PM_RENDER_NCHAN 14
+#define PM_RENDER_NCHAN 15
 extern const char *const pm_render_chans[PM_RENDER_NCHAN];
 
 /* Renders into img, which pm_render initializes (width and height from the
  * scene's camera). map and pi may be NULL for PM_EST_PATH; pi may be NULL for
- * PM_EST_CLASSICAL. */
+ * PM_EST_CLASSICAL, and then the edge layer is 0. */
 int pm_render(const pm_scene *s, const pm_accel *a, const pm_lights *L,
               const pm_photons *map, const pm_polyindex *pi,
               const pm_render_opts *o, pm_image *img, pm_error *err);

@@ -3,12 +3,13 @@
  * a mask selects (lib/compare.h). Prints "key: value" lines. */
 #include <getopt.h>
 #include <stdio.h>
+#include <stdlib.h>
 
 #include "compare.h"
 #include "image.h"
 #include "util.h"
 
-static const char usage[] = "pm-diff [-h] [-l NAME] [-m MASK.exr] A.exr B.exr";
+static const char usage[] = "pm-diff [-h] [-l NAME] [-m MASK.exr [-c CHANNEL]] A.exr B.exr";
 
 static void
 help(void)
@@ -17,7 +18,9 @@ help(void)
 	       "  -h, --help       print this help and exit\n"
 	       "  -l, --layer NAME compare NAME.R, NAME.G, NAME.B (or the single channel\n"
 	       "                   NAME) (default: the beauty R, G, B)\n"
-	       "  -m, --mask M     count only pixels where M's R > 0.5 (default: all)\n"
+	       "  -m, --mask M     count only pixels where M's mask channel > 0.5 (default: all)\n"
+	       "  -c, --mask-channel C  the mask channel, e.g. edge (pm-render's edge layer);\n"
+	       "                   !C selects pixels where C <= 0.5 instead (default: R)\n"
 	       "Prints rmse, relmse, mae, max_abs, mean_a, mean_b, pixels; B is the reference.\n",
 	       usage);
 }
@@ -57,18 +60,21 @@ main(int argc, char **argv)
 		{ "help", no_argument, NULL, 'h' },
 		{ "layer", required_argument, NULL, 'l' },
 		{ "mask", required_argument, NULL, 'm' },
+		{ "mask-channel", required_argument, NULL, 'c' },
 		{ NULL, 0, NULL, 0 },
 	};
-	const char *layer = NULL, *maskpath = NULL;
+	const char *layer = NULL, *maskpath = NULL, *maskchan = "R";
 	const float *pa[3], *pb[3], *mask = NULL;
+	float *inv = NULL;
 	pm_image a, b, m;
 	pm_diff d;
 	pm_error err;
 	int opt;
 
 	util_init(argc, argv);
-	while ((opt = getopt_long(argc, argv, ":hl:m:", longopts, NULL)) != -1) {
+	while ((opt = getopt_long(argc, argv, ":c:hl:m:", longopts, NULL)) != -1) {
 		switch (opt) {
+		case 'c': maskchan = optarg; break;
 		case 'h': help(); return 0;
 		case 'l': layer = optarg; break;
 		case 'm': maskpath = optarg; break;
@@ -90,8 +96,16 @@ main(int argc, char **argv)
 		if (m.width != a.width || m.height != a.height)
 			die("'%s': size %dx%d differs from '%s' (%dx%d)", maskpath, m.width, m.height,
 			    argv[optind], a.width, a.height);
-		if (!(mask = pm_image_chan(&m, "R")))
-			die("'%s': no channel 'R'", maskpath);
+		if (!(mask = pm_image_chan(&m, maskchan + (*maskchan == '!'))))
+			die("'%s': no channel '%s'", maskpath, maskchan + (*maskchan == '!'));
+		if (*maskchan == '!') {
+			size_t n = (size_t)m.width * m.height;
+			if (!(inv = malloc(n * sizeof *inv)))
+				die("out of memory");
+			for (size_t i = 0; i < n; i++)
+				inv[i] = mask[i] > 0.5f ? 0.0f : 1.0f;
+			mask = inv;
+		}
 	}
 	if (pm_compare(pa, pb, mask, a.width, a.height, &d, &err))
 		die("'%s': %s", maskpath ? maskpath : argv[optind], err.msg);

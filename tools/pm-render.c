@@ -126,7 +126,8 @@ main(int argc, char **argv)
 	pm_scene_verts_at(&s, time, verts);
 	if (pm_accel_build(&a, &s, verts, &err) != 0 || pm_lights_build(&L, &s, verts, time, &err) != 0)
 		die_err(&err);
-	if (o.estimator == PM_EST_COMPENSATED && pm_polyindex_build(&pi, &s, verts, &err) != 0)
+	/* The index serves the compensated estimate and the edge layer. */
+	if (mapname && pm_polyindex_build(&pi, &s, verts, &err) != 0)
 		die_err(&err);
 	if (pm_render(&s, a, &L, mapname ? &map : NULL, pi, &o, &img, &err) != 0)
 		die_err(&err);
