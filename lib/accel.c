@@ -149,13 +149,19 @@ pm_accel_occluded(const pm_accel *a, pm_vec3 o, pm_vec3 d, float tmin, float tma
 	return r.tfar < 0;
 }
 
-pm_vec3
-pm_accel_offset(const pm_accel *a, pm_vec3 p, pm_vec3 ng, pm_vec3 d)
+float
+pm_accel_eps(const pm_accel *a, pm_vec3 p)
 {
 	/* A few float spacings of the largest coordinate, so that far from
 	 * the origin the nudge still clears the rounding of the hit point. */
 	float m = fmaxf(fabsf(p.x), fmaxf(fabsf(p.y), fabsf(p.z)));
-	float eps = a->eps_abs + 8.0f * FLT_EPSILON * m;
+	return a->eps_abs + 8.0f * FLT_EPSILON * m;
+}
+
+pm_vec3
+pm_accel_offset(const pm_accel *a, pm_vec3 p, pm_vec3 ng, pm_vec3 d)
+{
+	float eps = pm_accel_eps(a, p);
 	return pm_add(p, pm_scale(ng, pm_dot(ng, d) >= 0 ? eps : -eps));
 }
 

@@ -38,6 +38,10 @@ int pm_accel_occluded(const pm_accel *a, pm_vec3 o, pm_vec3 d, float tmin, float
  * and far from the origin alike. */
 pm_vec3 pm_accel_offset(const pm_accel *a, pm_vec3 p, pm_vec3 ng, pm_vec3 d);
 
+/* The size of that nudge at p: also how far short of a target point a
+ * shadow ray must stop so as not to hit the target's own surface. */
+float pm_accel_eps(const pm_accel *a, pm_vec3 p);
+
 /* The scene's bounding box diagonal at this time. */
 float pm_accel_extent(const pm_accel *a);
 

@@ -93,10 +93,11 @@ direct_light(const ctx *c, pm_vec3 x, pm_vec3 ng, pm_vec3 n, pm_vec3 wo,
 	if (pm_maxc(f) <= 0)
 		return pm_v3(0, 0, 0);
 	{
-		pm_vec3 o = pm_accel_offset(c->a, x, ng, wi);
-		float far = pm_len(pm_sub(pm_add(x, pm_scale(wi, dist)), o));
-		/* Stop short of the light's own surface. */
-		if (pm_accel_occluded(c->a, o, wi, 0.0f, far * (1.0f - 1e-4f)))
+		pm_vec3 o = pm_accel_offset(c->a, x, ng, wi), lp = pm_add(x, pm_scale(wi, dist));
+		/* Stop short of the light's own surface by more than the rounding
+		 * of the light point, which grows with its distance from the origin. */
+		float far = pm_len(pm_sub(lp, o)) - 2.0f * pm_accel_eps(c->a, lp);
+		if (far > 0 && pm_accel_occluded(c->a, o, wi, 0.0f, far))
 			return pm_v3(0, 0, 0);
 	}
 	w = lpdf > 0 ? mis(lpdf, pm_bsdf_pdf(m, n, wi, wo)) : 1.0f;

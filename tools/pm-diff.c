@@ -9,7 +9,7 @@
 #include "image.h"
 #include "util.h"
 
-static const char usage[] = "pm-diff [-h] [-l NAME] [-m MASK.exr [-c CHANNEL]] A.exr B.exr";
+static const char usage[] = "pm-diff [-h] [-l NAME] [-m MASK.exr [-c CHANNEL]] [-o ERR.exr] A.exr B.exr";
 
 static void
 help(void)
@@ -21,6 +21,8 @@ help(void)
 	       "  -m, --mask M     count only pixels where M's mask channel > 0.5 (default: all)\n"
 	       "  -c, --mask-channel C  the mask channel, e.g. edge (pm-render's edge layer);\n"
 	       "                   !C selects pixels where C <= 0.5 instead (default: R)\n"
+	       "  -o, --output ERR.exr  also write the relative error map (A - B) / B per\n"
+	       "                   channel (A - B where B = 0) as R, G, B (default: none)\n"
 	       "Prints rmse, relmse, mae, max_abs, mean_a, mean_b, pixels; B is the reference.\n",
 	       usage);
 }
@@ -42,6 +44,28 @@ load(pm_image *img, const char *path, const char *layer, const float *p[3])
 	}
 }
 
+/* The signed relative error per pixel and channel, for looking at where an
+ * estimate is off (edges, corners) rather than by how much overall. */
+static void
+write_errmap(const char *path, const float *const pa[3], const float *const pb[3], int w, int h)
+{
+	static const char *const names[3] = {"R", "G", "B"};
+	size_t n = (size_t)w * h;
+	pm_image e;
+	pm_error err;
+
+	if (pm_image_init(&e, w, h, 3, names, &err))
+		die_err(&err);
+	for (int c = 0; c < 3; c++) {
+		float *d = pm_image_chan(&e, names[c]);
+		for (size_t i = 0; i < n; i++)
+			d[i] = pb[c][i] != 0 ? (pa[c][i] - pb[c][i]) / pb[c][i] : pa[c][i] - pb[c][i];
+	}
+	if (pm_image_set_attr(&e, "pm.command", cmdline(), &err) || pm_image_write_exr(&e, path, &err))
+		die_err(&err);
+	pm_image_free(&e);
+}
+
 /* getopt's own messages would add a second line; say it once, our way. */
 static void
 bad_option(int opt, char **argv)
@@ -61,9 +85,10 @@ main(int argc, char **argv)
 		{ "layer", required_argument, NULL, 'l' },
 		{ "mask", required_argument, NULL, 'm' },
 		{ "mask-channel", required_argument, NULL, 'c' },
+		{ "output", required_argument, NULL, 'o' },
 		{ NULL, 0, NULL, 0 },
 	};
-	const char *layer = NULL, *maskpath = NULL, *maskchan = "R";
+	const char *layer = NULL, *maskpath = NULL, *maskchan = "R", *errpath = NULL;
 	const float *pa[3], *pb[3], *mask = NULL;
 	float *inv = NULL;
 	pm_image a, b, m;
@@ -72,12 +97,13 @@ main(int argc, char **argv)
 	int opt;
 
 	util_init(argc, argv);
-	while ((opt = getopt_long(argc, argv, ":c:hl:m:", longopts, NULL)) != -1) {
+	while ((opt = getopt_long(argc, argv, ":c:hl:m:o:", longopts, NULL)) != -1) {
 		switch (opt) {
 		case 'c': maskchan = optarg; break;
 		case 'h': help(); return 0;
 		case 'l': layer = optarg; break;
 		case 'm': maskpath = optarg; break;
+		case 'o': errpath = optarg; break;
 		default: bad_option(opt, argv);
 		}
 	}
@@ -109,6 +135,8 @@ main(int argc, char **argv)
 	}
 	if (pm_compare(pa, pb, mask, a.width, a.height, &d, &err))
 		die("'%s': %s", maskpath ? maskpath : argv[optind], err.msg);
+	if (errpath)
+		write_errmap(errpath, pa, pb, a.width, a.height);
 	printf("rmse: %.9g\nrelmse: %.9g\nmae: %.9g\nmax_abs: %.9g\nmean_a: %.9g\nmean_b: %.9g\n"
 	       "pixels: %lld\n", d.rmse, d.relmse, d.mae, d.max_abs, d.mean_a, d.mean_b, d.pixels);
 	if (fflush(stdout) != 0 || ferror(stdout))
