@@ -17,11 +17,17 @@
 
 #include "bsdf.h"
 #include "clip.h"
+#include "overlap.h"
 
 /* A polygon whose unit normal is this close to +-n is taken as lying in the
  * plane of x (1 - cos of about 1.4 milliradians). */
 #define PARALLEL_EPS 1e-6
 #define MAX_K (1 << 24)
+/* Polygons remembered per cube for the parallel-layer correction. */
+#define MAX_SEEN 32
+/* Parallel layers closer than this (relative to h) count as touching
+ * (opposite normals) or as one plane (same normals). */
+#define CONTACT_REL 1e-3
 
 struct pm_comp_scratch {
 	int k;
@@ -99,7 +105,25 @@ typedef struct visit_ctx {
 	const double *c;
 	double *ap;
 	int polys;
+	int nseen;                 /* polygons with area in the cube ... */
+	uint32_t seen[MAX_SEEN];   /* ... their numbers */
+	pm_dvec3 seen_n[MAX_SEEN]; /* ... unit normals */
 } visit_ctx;
+
+/* Polygon g's share of a photon's target area per unit of its area (the
+ * factor of A_g in eq. 4), by the rules in compensate.h. */
+static double
+factor(const visit_ctx *q, int solid, pm_dvec3 N, int j)
+{
+	double sg = pm_ddot(N, q->n), t;
+
+	if (fabs(sg) >= 1 - PARALLEL_EPS) {
+		t = sg > 0 ? q->c[j] : -q->c[j];
+		return solid ? fmax(0, t) : fabs(t);
+	}
+	t = pm_ddot(q->psi[j], N);
+	return solid ? fmax(0, t) : fabs(t);
+}
 
 /* Eq. 4 for one polygon g: clip it into the cube (A_g) and add A_g (Psi_p .
  * N_g) to the target area of every photon it faces. */
@@ -139,6 +163,10 @@ visit(void *vctx, uint32_t g)
 	if (!(A > 0))
 		return;
 	q->polys++;
+	if (q->nseen < MAX_SEEN) {
+		q->seen[q->nseen] = g;
+		q->seen_n[q->nseen++] = N;
+	}
 
 	int solid = s->objs[s->poly_obj[g]].solid;
 	sg = pm_ddot(N, q->n);
@@ -155,6 +183,173 @@ visit(void *vctx, uint32_t g)
 		double t = pm_ddot(q->psi[j], N);
 		q->ap[j] += A * (solid ? fmax(0, t) : fabs(t));
 	}
+}
+
+/* Polygon g clipped into the cube, relative to x; 0 vertices if it is too
+ * large to clip here or not convex (then no correction is made for it). */
+static int
+clipped(const visit_ctx *q, uint32_t g, pm_dvec3 N, pm_dvec3 *out)
+{
+	const pm_scene *s = q->pi->s;
+	pm_dvec3 v[64];
+	int n = (int)(s->poly_start[g + 1] - s->poly_start[g]);
+
+	if (n > 64)
+		return 0;
+	for (int i = 0; i < n; i++)
+		v[i] = pm_dsub(pm_dfromf(q->pi->verts[s->poly_vert[s->poly_start[g] + (uint32_t)i]]), q->x);
+	if (!pm_poly_convex(v, n, N))
+		return 0;
+	return pm_clip_poly(v, n, q->h, out);
+}
+
+/* The paper's eq. 4 assumes the front-facing polygons in the cube do not
+ * overlap in a photon's projection. Parallel layers do (a picture in front
+ * of a wall, a rug on a floor, a box resting on a table): light reaching the
+ * back layer's covered part has to pass through the front one, so that part
+ * is taken out of A_p (overlap.h). Layers with opposite normals that touch
+ * seal the area between them off from every direction. */
+static void
+hide_overlaps(visit_ctx *q)
+{
+	const pm_scene *s = q->pi->s;
+	pm_dvec3 va[64 + 6], vb[64 + 6], scratch[2 * (64 + 6) * 2 + 8];
+
+	for (int a = 0; a < q->nseen; a++)
+		for (int b = a + 1; b < q->nseen; b++) {
+			pm_dvec3 Na = q->seen_n[a], Nb = q->seen_n[b];
+			double cs = pm_ddot(Na, Nb), gap, oa, ob;
+			int sa = s->objs[s->poly_obj[q->seen[a]]].solid;
+			int sb = s->objs[s->poly_obj[q->seen[b]]].solid;
+			int na, nb;
+			if (fabs(cs) < 1 - PARALLEL_EPS)
+				continue;
+			na = clipped(q, q->seen[a], Na, va);
+			nb = clipped(q, q->seen[b], Nb, vb);
+			if (na < 3 || nb < 3)
+				continue;
+			oa = pm_ddot(va[0], Na);
+			ob = pm_ddot(vb[0], Na);
+			gap = ob - oa;             /* b's plane relative to a's, along Na */
+			if (cs < 0) {
+				/* Opposite normals: touching faces of two objects. */
+				if (fabs(gap) > CONTACT_REL * q->h)
+					continue;
+				double O = pm_overlap_area(va, na, vb, nb, Nb, Nb, scratch);
+				if (!(O > 0))
+					continue;
+				for (int j = 0; j < q->na; j++)
+					q->ap[j] -= O * (factor(q, sa, Na, j) + factor(q, sb, Nb, j));
+				continue;
+			}
+			/* Same normals: for each photon, the layer nearer to where it
+			 * comes from hides part of the other. Nearly coplanar layers
+			 * hide the same area for every direction. */
+			double O0 = fabs(gap) <= CONTACT_REL * q->h ?
+				pm_overlap_area(va, na, vb, nb, Nb, Nb, scratch) : -1;
+			if (O0 == 0)
+				continue;
+			for (int j = 0; j < q->na; j++) {
+				double fa = factor(q, sa, Na, j), fb = factor(q, sb, Nb, j);
+				double dn = pm_ddot(q->psi[j], Na), O;
+				int a_front;
+				if (!(fa > 0) || !(fb > 0))
+					continue;
+				a_front = dn > 0 ? gap < 0 : gap > 0;
+				if (O0 >= 0)
+					O = O0;
+				else if (a_front)
+					O = pm_overlap_area(va, na, vb, nb, Nb, q->psi[j], scratch);
+				else
+					O = pm_overlap_area(vb, nb, va, na, Na, q->psi[j], scratch);
+				q->ap[j] -= O * (a_front ? fb : fa);
+			}
+		}
+	for (int j = 0; j < q->na; j++)
+		if (q->ap[j] < 0)
+			q->ap[j] = 0;
+}
+
+/* 1 if point p (in polygon g's plane, relative to x) is inside polygon g:
+ * crossing number in the coordinate plane the polygon projects best to. */
+static int
+inside(const visit_ctx *q, uint32_t g, pm_dvec3 N, pm_dvec3 p)
+{
+	const pm_scene *s = q->pi->s;
+	int ax = fabs(N.x) > fabs(N.y) ? (fabs(N.x) > fabs(N.z) ? 0 : 2) : (fabs(N.y) > fabs(N.z) ? 1 : 2);
+	int u = (ax + 1) % 3, v = (ax + 2) % 3, in = 0;
+	double P[3] = {p.x, p.y, p.z};
+	uint32_t a = s->poly_start[g], n = s->poly_start[g + 1] - a;
+
+	for (uint32_t i = 0, j = n - 1; i < n; j = i++) {
+		pm_dvec3 vi = pm_dsub(pm_dfromf(q->pi->verts[s->poly_vert[a + i]]), q->x);
+		pm_dvec3 vj = pm_dsub(pm_dfromf(q->pi->verts[s->poly_vert[a + j]]), q->x);
+		double I[3] = {vi.x, vi.y, vi.z}, J[3] = {vj.x, vj.y, vj.z};
+		if ((I[v] > P[v]) != (J[v] > P[v]) &&
+		    P[u] < (J[u] - I[u]) * (P[v] - I[v]) / (J[v] - I[v]) + I[u])
+			in = !in;
+	}
+	return in;
+}
+
+/* Photons behind a polygon as seen from x — on the far side of a thin wall,
+ * under a rug, behind a picture — carry light that cannot reach x: the
+ * segment from x to the photon crosses that polygon inside the cube, or the
+ * photon lies right behind x's own surface. They are left out (w = 0).
+ * Photons on polygons meeting x's surface at an edge are not: the segment
+ * from x runs through free space or the solid's inside without crossing
+ * another face. */
+static int
+hide_behind(const visit_ctx *q, const pm_vec3 *pos, const int *act, double *w, double eps)
+{
+	const pm_scene *s = q->pi->s;
+	int hidden = 0;
+
+	for (int gi = 0; gi < q->nseen; gi++) {
+		uint32_t g = q->seen[gi];
+		pm_dvec3 N = q->seen_n[gi];
+		pm_dvec3 v0 = pm_dsub(pm_dfromf(q->pi->verts[s->poly_vert[s->poly_start[g]]]), q->x);
+		double sx = -pm_ddot(N, v0);     /* x's side of g's plane */
+		if (fabs(sx) <= eps) {
+			/* g holds x: photons right behind it (their foot point on
+			 * g lies in g) are in the pocket behind x's surface. At a
+			 * convex edge the photons behind x's plane have their
+			 * foot point beyond the edge, outside g, and stay. */
+			if (fabs(pm_ddot(N, q->n)) < 1 - PARALLEL_EPS)
+				continue;
+			for (int j = 0; j < q->na; j++) {
+				int i = act[j];
+				pm_dvec3 r;
+				if (!(w[i] > 0))
+					continue;
+				r = pm_dsub(pm_dfromf(pos[i]), q->x);
+				if (pm_ddot(q->n, r) >= -eps)
+					continue;
+				if (inside(q, g, N, pm_dsub(r, pm_dscale(N, pm_ddot(N, pm_dsub(r, v0)))))) {
+					w[i] = 0;
+					hidden++;
+				}
+			}
+			continue;
+		}
+		for (int j = 0; j < q->na; j++) {
+			int i = act[j];
+			pm_dvec3 r;
+			double sp, t;
+			if (!(w[i] > 0))
+				continue;
+			r = pm_dsub(pm_dfromf(pos[i]), q->x);
+			sp = pm_ddot(N, pm_dsub(r, v0));
+			if (fabs(sp) <= eps || (sp > 0) == (sx > 0))
+				continue;
+			t = sx / (sx - sp);
+			if (inside(q, g, N, pm_dscale(r, t))) {
+				w[i] = 0;
+				hidden++;
+			}
+		}
+	}
+	return hidden;
 }
 
 void
@@ -253,6 +448,8 @@ pm_comp_weights(const pm_polyindex *pi, pm_vec3 x, pm_vec3 n,
 	q.ap = sc->ap;
 	pm_polyindex_cube(pi, xd, q.h, visit, &q);
 	z.polys = q.polys;
+	if (q.nseen > 1)
+		hide_overlaps(&q);
 
 	/* Eq. 2 and 3: Phi_p / A_p (Psi_p . N). A photon with no front-facing
 	 * area cannot be spread: skip it. The threshold scales with Psi . n so
@@ -263,6 +460,11 @@ pm_comp_weights(const pm_polyindex *pi, pm_vec3 x, pm_vec3 n,
 			w[sc->act[j]] = sc->c[j] / sc->ap[j];
 		else
 			z.skipped++;
+	}
+	if (q.nseen > 1) {
+		/* Beyond float rounding of the vertices, which grows with |x|. */
+		double mx = fmax(fabs(xd.x), fmax(fabs(xd.y), fabs(xd.z)));
+		z.hidden = hide_behind(&q, pos, sc->act, w, 1e-4 * q.h + 8 * FLT_EPSILON * mx);
 	}
 out:
 	if (st)

@@ -23,6 +23,11 @@
  *    between (Psi_p . N) and A_p and grazing photons stay exact.
  *  - A photon arriving in front of n whose target area is (almost) nothing
  *    cannot be spread over any surface: it is skipped and counted.
+ *  - Parallel layers hide each other: the part of a polygon behind a
+ *    parallel polygon, seen along the photon's direction, is not target
+ *    area (a picture on a wall, a rug, a box resting on a table); see
+ *    overlap.h. Photons behind a polygon as seen from x (the segment from x
+ *    crosses it in the cube) are left out: no light through thin walls.
  *  - Photons all at one point (cube of size 0): the cube gets a minimum
  *    half-size of HMIN_REL times the size of the photon-surface geometry. */
 #ifndef PM_COMPENSATE_H
@@ -41,6 +46,7 @@ typedef struct pm_comp_stats {
 	int shell;       /* of those, set aside on the cube's boundary */
 	int front;       /* used photons arriving in front of n */
 	int skipped;     /* of those, without target area (A_p ~ 0) */
+	int hidden;      /* of those, behind another polygon as seen from x */
 	int polys;       /* polygons with area in the cube */
 	int closed;      /* 1 if the cube was closed (see above) */
 } pm_comp_stats;

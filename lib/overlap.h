@@ -1,0 +1,38 @@
+/* overlap.h — where two parallel polygons hide each other inside the
+ * compensated estimate's cube.
+ *
+ * The paper's target area (§3, eq. 4) sums the projected areas of the
+ * front-facing polygons in the cube and assumes they do not overlap in the
+ * photon's projection. Scenes break that constantly with parallel layers: a
+ * picture 1 cm in front of a wall, a rug on a floor, a lamp just under a
+ * ceiling, a box resting on a table (its bottom face on the tabletop). A
+ * photon there lands on the front layer only, so the part of the back layer
+ * behind the front one must not count in A_p. These functions give that
+ * hidden area; compensate.c subtracts it. All geometry in double, relative
+ * to the cube centre. */
+#ifndef PM_OVERLAP_H
+#define PM_OVERLAP_H
+
+#include "vec.h"
+
+/* Most vertices a polygon of n vertices can have after clipping to the
+ * cube: every face plane adds at most one. */
+#define PM_OVERLAP_MAXV(n) ((n) + 6)
+
+/* Clips polygon in[0..n-1] (relative to the centre) to the closed cube
+ * [-h, h]^3 (Sutherland-Hodgman, 6 planes); out has room for n + 6
+ * vertices. Returns the number of vertices out (0 if nothing is inside). */
+int pm_clip_poly(const pm_dvec3 *in, int n, double h, pm_dvec3 *out);
+
+/* 1 if the polygon is convex in the plane with unit normal N (collinear
+ * vertices allowed), 0 otherwise. */
+int pm_poly_convex(const pm_dvec3 *v, int n, pm_dvec3 N);
+
+/* Area of the part of convex polygon b (unit normal nb) covered by polygon
+ * a projected onto b's plane along direction d (d . nb != 0): the area of b
+ * hidden behind a for light travelling along d. scratch has room for
+ * 2 * (na + nb) + 8 vertices. Returns 0 if d is parallel to b's plane. */
+double pm_overlap_area(const pm_dvec3 *a, int na, const pm_dvec3 *b, int nb,
+                       pm_dvec3 nb_unit, pm_dvec3 d, pm_dvec3 *scratch);
+
+#endif
