@@ -3,6 +3,7 @@
 
 #include <float.h>
 #include <math.h>
+#include <omp.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -28,6 +29,7 @@ pm_estimator_name(int e)
 	case PM_EST_CLASSICAL: return "classical";
 	case PM_EST_COMPENSATED: return "compensated";
 	case PM_EST_PATH: return "path";
+	case PM_EST_PHOTONS: return "photons";
 	default: return "?";
 	}
 }
@@ -35,7 +37,7 @@ pm_estimator_name(int e)
 int
 pm_estimator_parse(const char *name)
 {
-	for (int e = PM_EST_CLASSICAL; e <= PM_EST_PATH; e++)
+	for (int e = PM_EST_CLASSICAL; e <= PM_EST_PHOTONS; e++)
 		if (strcmp(name, pm_estimator_name(e)) == 0)
 			return e;
 	return -1;
@@ -196,6 +198,92 @@ trace(const ctx *c, scratch *sc, pm_vec3 o, pm_vec3 d, pm_rng *r, sample *out)
 	}
 }
 
+/* -e photons (see render.h): each photon's pixel and contribution are found
+ * in parallel, then summed in photon order, so the image does not depend on
+ * the thread count. */
+static int
+render_photons(const pm_scene *s, const pm_accel *a, const pm_photons *map,
+               const pm_camera *cam, const pm_render_opts *o, pm_image *img, pm_error *err)
+{
+	int W = cam->width, H = cam->height;
+	size_t npx = (size_t)W * H, n = (size_t)map->h.count;
+	double emitted = map->h.emitted ? (double)map->h.emitted : 1.0;
+	/* Pixel side on the image plane at distance 1. */
+	float pix = 2.0f * cam->tan_half / (float)H;
+	float aspect = (float)W / (float)H;
+	long *at = malloc((n ? n : 1) * sizeof *at);
+	pm_vec3 *val = malloc((n ? n : 1) * sizeof *val);
+	float *R = pm_image_chan(img, "R"), *G = pm_image_chan(img, "G"), *B = pm_image_chan(img, "B");
+	float *IR = pm_image_chan(img, "indirect.R"), *IG = pm_image_chan(img, "indirect.G");
+	float *IB = pm_image_chan(img, "indirect.B"), *cnt = pm_image_chan(img, "count");
+
+	if (!at || !val) {
+		free(at);
+		free(val);
+		pm_image_free(img);
+		return pm_seterr(err, "out of memory");
+	}
+	#pragma omp parallel for schedule(dynamic, 4096)
+	for (size_t i = 0; i < n; i++) {
+		pm_vec3 p = pm_photon_pos(&map->p[i]), v = pm_sub(p, cam->eye), d, wo, nrm;
+		float z = pm_dot(v, cam->f), dist = pm_len(v), x, y, cosa, coso, area;
+		const pm_material *m;
+		pm_hit h;
+		long px, py;
+
+		at[i] = -1;
+		if (!(z > 0) || !(dist > 0))
+			continue;
+		x = pm_dot(v, cam->r) / z;
+		y = pm_dot(v, cam->u) / z;
+		x = (x / (cam->tan_half * aspect) + 1.0f) * 0.5f * (float)W;
+		y = (1.0f - y / cam->tan_half) * 0.5f * (float)H;
+		if (!(x >= 0 && x < (float)W && y >= 0 && y < (float)H))
+			continue;
+		px = (long)x;
+		py = (long)y;
+		d = pm_scale(v, 1.0f / dist);
+		/* Depth test: the camera sees the photon if the first surface
+		 * along the ray to it is where the photon lies. */
+		if (!pm_accel_hit(a, cam->eye, d, 0.0f, FLT_MAX, &h) ||
+		    fabsf(h.t - dist) > 1e-3f * dist + 1e-6f)
+			continue;
+		m = &s->mats[s->objs[h.obj].material];
+		wo = pm_neg(d);
+		nrm = pm_dot(h.ng, wo) >= 0 ? h.ng : pm_neg(h.ng);
+		cosa = z / dist;
+		coso = pm_dot(nrm, wo);
+		if (!(coso > 0))
+			continue;
+		/* Footprint: the pixel's solid angle pix^2 cos^3(a) at distance
+		 * dist, spread over a surface tilted by the view angle. */
+		area = dist * dist * pix * pix * cosa * cosa * cosa / coso;
+		val[i] = pm_scale(pm_mul(pm_bsdf_eval(m, nrm, pm_photon_dir(&map->p[i]), wo),
+		                         pm_photon_power(&map->p[i])),
+		                  (float)(1.0 / emitted) / area);
+		at[i] = py * W + px;
+	}
+	for (size_t i = 0; i < n; i++) {
+		long k = at[i];
+		if (k < 0 || !pm_vfinite(val[i]))
+			continue;
+		R[k] += val[i].x;
+		G[k] += val[i].y;
+		B[k] += val[i].z;
+		cnt[k] += 1.0f;
+	}
+	for (size_t k = 0; k < npx; k++) {
+		IR[k] = R[k];
+		IG[k] = G[k];
+		IB[k] = B[k];
+	}
+	free(at);
+	free(val);
+	if (o->progress)
+		o->progress(o->progress_arg, (uint64_t)H, (uint64_t)H);
+	return 0;
+}
+
 static int
 finite_sample(const sample *s)
 {
@@ -223,7 +311,10 @@ pm_render(const pm_scene *s, const pm_accel *a, const pm_lights *L,
 	npx = (size_t)W * H;
 	if (pm_image_init(img, W, H, PM_RENDER_NCHAN, pm_render_chans, err) != 0)
 		return -1;
+	if (o->estimator == PM_EST_PHOTONS)
+		return render_photons(s, a, map, &cam, o, img, err);
 
+	int rows_done = 0;
 	#pragma omp parallel reduction(|:fail)
 	{
 		scratch sc = {0};
@@ -273,6 +364,13 @@ pm_render(const pm_scene *s, const pm_accel *a, const pm_lights *L,
 				for (int ch = 0; ch < PM_RENDER_NCHAN; ch++)
 					img->px[(size_t)ch * npx + i] = v[ch];
 			}
+			/* Progress from one thread only: the hook need not be
+			 * thread-safe, and nothing it does reaches the image. */
+			int done;
+			#pragma omp atomic capture
+			done = ++rows_done;
+			if (o->progress && omp_get_thread_num() == 0)
+				o->progress(o->progress_arg, (uint64_t)done, (uint64_t)H);
 		}
 		free(sc.nn);
 		if (sc.comp)
@@ -282,5 +380,7 @@ pm_render(const pm_scene *s, const pm_accel *a, const pm_lights *L,
 		pm_image_free(img);
 		return pm_seterr(err, "out of memory");
 	}
+	if (o->progress)
+		o->progress(o->progress_arg, (uint64_t)H, (uint64_t)H);
 	return 0;
 }

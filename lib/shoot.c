@@ -117,6 +117,8 @@ pm_shoot(const pm_scene *s, const pm_accel *a, const pm_lights *L,
 					done = 1;
 			}
 		}
+		if (o->progress)
+			o->progress(o->progress_arg, stored, want);
 	}
 	for (int ci = 0; ci < BATCH; ci++)
 		free(ch[ci].p);

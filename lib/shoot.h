@@ -14,6 +14,7 @@
 #include "err.h"
 #include "light.h"
 #include "photon.h"
+#include "progress.h"
 #include "scene.h"
 
 typedef struct pm_shoot_opts {
@@ -22,6 +23,8 @@ typedef struct pm_shoot_opts {
 	float time;         /* shutter time the accel and lights were built at */
 	int max_bounces;    /* hard cap on a path's length; 0 means 256 */
 	uint64_t max_paths; /* give up after this many paths; 0 means 64 n + 2^20 */
+	pm_progress_fn *progress;  /* if set, called with (photons stored, n) */
+	void *progress_arg;
 } pm_shoot_opts;
 
 /* Fills out (photons, header: count, emitted, bbox, scene hash, time, seed).

@@ -9,6 +9,7 @@
 
 #include "average.h"
 #include "image.h"
+#include "progress.h"
 #include "util.h"
 
 static const char usage[] = "pm-average [-fhqs] [-o OUT.exr] IMAGE...";
@@ -20,8 +21,9 @@ help(void)
 	       "  -f, --force     average despite differing pm.scene_hash (default: refuse)\n"
 	       "  -h, --help      print this help and exit\n"
 	       "  -o, --output F  write the average to the EXR file F (default: none)\n"
-	       "  -q, --quiet     no warnings (default: warn about dropped layers and\n"
-	       "                  forced mismatches)\n"
+	       "  -q, --quiet     no warnings, no progress bar (default: warn about\n"
+	       "                  dropped layers and forced mismatches; a progress bar\n"
+	       "                  when stderr is a terminal)\n"
 	       "  -s, --stats     print passes, mean_stderr and mean to stdout (default: off)\n"
 	       "At least one of -o and -s is needed.\n", usage);
 }
@@ -68,6 +70,7 @@ main(int argc, char **argv)
 	char (*dropped)[PM_CHAN_NAME] = NULL;
 	pm_error err;
 	pm_avg avg;
+	progress bar;
 	pm_image img;
 
 	util_init(argc, argv);
@@ -87,6 +90,7 @@ main(int argc, char **argv)
 		usage_err(usage, "nothing to do: give -o OUT.exr or --stats");
 
 	pm_avg_init(&avg);
+	progress_start(&bar, "images", (uint64_t)(argc - optind), quiet);
 	for (int i = optind; i < argc; i++) {
 		const char *path = argv[i];
 		double passes;
@@ -131,7 +135,9 @@ main(int argc, char **argv)
 			warn("'%s': no channel '%s'; it is left out of the average", path, dropped[c]);
 		ndropped = 0;
 		pm_image_free(&img);
+		progress_update(&bar, (uint64_t)(i - optind + 1));
 	}
+	progress_end(&bar, (uint64_t)(argc - optind));
 
 	if (outpath) {
 		if (pm_avg_image(&avg, &img, &err) ||

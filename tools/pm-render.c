@@ -10,26 +10,32 @@
 #include "estimate.h"
 #include "image.h"
 #include "light.h"
+#include "pass.h"
 #include "photon.h"
 #include "render.h"
 #include "scene.h"
+#include "progress.h"
 #include "util.h"
 
 static const char usage[] =
-	"pm-render SCENE [MAP|-] [-e classical|compensated|path] [-k K] [-p SAMPLES] "
-	"[-s SEED] [-t TIME] [-j THREADS] [--force] -o OUT.exr";
+	"pm-render SCENE [MAP|-] [-e classical|compensated|path|photons] [-k K] [-p SAMPLES] "
+	"[-P I/N] [-s SEED] [-t TIME] [-j THREADS] [-q] [--force] -o OUT.exr";
 
 _Noreturn static void
 help(void)
 {
 	printf("usage: %s\n"
 	       "Renders SCENE's view pass with photon map MAP (- for stdin) to an EXR (formats/image.md).\n"
-	       "  -e EST      estimator: classical, compensated or path (default compensated);\n"
-	       "              path is an unbiased path tracer and needs no MAP\n"
+	       "  -e EST      estimator: classical, compensated, path or photons (default\n"
+	       "              compensated); path is an unbiased path tracer and needs no MAP;\n"
+	       "              photons shows MAP's photons as seen from the camera\n"
 	       "  -j THREADS  threads, 0 for all cores (default 0); the output does not depend on it\n"
 	       "  -k K        nearest photons per estimate (default 50)\n"
 	       "  -o OUT.exr  output image (required)\n"
 	       "  -p SAMPLES  camera samples per pixel (default 4)\n"
+	       "  -P I/N      pass I of N: seed and time derived from I and N, as pm-shoot -P\n"
+	       "              does (see pm-render(1)); -s and -t override them (default: no pass)\n"
+	       "  -q          quiet: no progress bar\n"
 	       "  -s SEED     random seed (default 0)\n"
 	       "  -t TIME     shutter time in [0,1] (default: the map's time, else 0)\n"
 	       "  --force     render even if MAP was made from another scene or time\n"
@@ -56,7 +62,9 @@ main(int argc, char **argv)
 	};
 	pm_render_opts o = {.estimator = PM_EST_COMPENSATED, .k = 50, .spp = 4};
 	const char *out = NULL, *mapname = NULL;
-	int c, threads = 0, force = 0, have_time = 0;
+	int c, threads = 0, force = 0, have_time = 0, have_seed = 0, quiet = 0;
+	uint32_t pass_i = 0, pass_n = 0;
+	progress bar;
 	float time = 0;
 	pm_scene s;
 	pm_photons map = {0};
@@ -70,7 +78,7 @@ main(int argc, char **argv)
 
 	util_init(argc, argv);
 	opterr = 0;
-	while ((c = getopt_long(argc, argv, "e:hj:k:o:p:s:t:", longopts, NULL)) != -1) {
+	while ((c = getopt_long(argc, argv, "e:hj:k:o:p:P:qs:t:", longopts, NULL)) != -1) {
 		switch (c) {
 		case 'e':
 			if ((o.estimator = pm_estimator_parse(optarg)) < 0)
@@ -82,7 +90,12 @@ main(int argc, char **argv)
 		case 'k': o.k = (int)parse_int(optarg, 1, 100000, "-k", usage); break;
 		case 'o': out = optarg; break;
 		case 'p': o.spp = (int)parse_int(optarg, 1, 1 << 20, "-p", usage); break;
-		case 's': o.seed = parse_u64(optarg, "-s", usage); break;
+		case 'P':
+			if (pm_pass_parse(optarg, &pass_i, &pass_n, &err) != 0)
+				usage_err(usage, "-P: %s", err.msg);
+			break;
+		case 'q': quiet = 1; break;
+		case 's': o.seed = parse_u64(optarg, "-s", usage); have_seed = 1; break;
 		case 't': time = (float)parse_real(optarg, 0, 1, "-t", usage); have_time = 1; break;
 		default: usage_err(usage, "unknown option '%s'", argv[optind - 1]);
 		}
@@ -98,6 +111,18 @@ main(int argc, char **argv)
 		          pm_estimator_name(o.estimator));
 	if (!out)
 		usage_err(usage, "no output given (-o OUT.exr)");
+	if (pass_n) {
+		/* Both halves of a pair derive the same seed and time. */
+		uint64_t pseed;
+		float ptime;
+		pm_pass_derive(pass_i, pass_n, &pseed, &ptime);
+		if (!have_seed)
+			o.seed = pseed;
+		if (!have_time) {
+			time = ptime;
+			have_time = 1;
+		}
+	}
 	set_threads(threads);
 
 	if (pm_scene_load(&s, argv[optind], &err) != 0)
@@ -127,10 +152,14 @@ main(int argc, char **argv)
 	if (pm_accel_build(&a, &s, verts, &err) != 0 || pm_lights_build(&L, &s, verts, time, &err) != 0)
 		die_err(&err);
 	/* The index serves the compensated estimate and the edge layer. */
-	if (mapname && pm_polyindex_build(&pi, &s, verts, &err) != 0)
+	if (mapname && o.estimator != PM_EST_PHOTONS && pm_polyindex_build(&pi, &s, verts, &err) != 0)
 		die_err(&err);
+	progress_start(&bar, "rows", (uint64_t)s.camera.height, quiet);
+	o.progress = progress_hook;
+	o.progress_arg = &bar;
 	if (pm_render(&s, a, &L, mapname ? &map : NULL, pi, &o, &img, &err) != 0)
 		die_err(&err);
+	progress_end(&bar, (uint64_t)s.camera.height);
 
 	hist = malloc((map.h.history ? strlen(map.h.history) : 0) + strlen(cmdline()) + 2);
 	if (!hist)

@@ -9,13 +9,15 @@
 #include "accel.h"
 #include "atomic.h"
 #include "light.h"
+#include "pass.h"
 #include "photon.h"
 #include "scene.h"
 #include "shoot.h"
+#include "progress.h"
 #include "util.h"
 
 static const char usage[] =
-	"pm-shoot SCENE [-n PHOTONS] [-s SEED] [-t TIME] [-j THREADS] [-o FILE|-] [-q]";
+	"pm-shoot SCENE [-n PHOTONS] [-P I/N] [-s SEED] [-t TIME] [-j THREADS] [-o FILE|-] [-q]";
 
 _Noreturn static void
 help(void)
@@ -24,7 +26,9 @@ help(void)
 	       "Traces photons from the lights of SCENE and writes a photon file (formats/photons.md).\n"
 	       "  -n PHOTONS  photons to store (default 200000)\n"
 	       "  -o FILE     output file, - for stdout (default -)\n"
-	       "  -q          quiet: no warnings\n"
+	       "  -P I/N      pass I of N: seed and time derived from I and N (see pm-shoot(1));\n"
+	       "              -s and -t, if given, override them (default: no pass)\n"
+	       "  -q          quiet: no warnings, no progress bar\n"
 	       "  -s SEED     random seed (default 0)\n"
 	       "  -t TIME     shutter time in [0,1] for moving objects (default 0)\n"
 	       "  -j THREADS  threads, 0 for all cores (default 0); the output does not depend on it\n"
@@ -37,7 +41,9 @@ main(int argc, char **argv)
 {
 	pm_shoot_opts o = {.nphotons = 200000};
 	const char *out = "-";
-	int c, threads = 0, quiet = 0;
+	int c, threads = 0, quiet = 0, have_seed = 0, have_time = 0;
+	uint32_t pass_i = 0, pass_n = 0;
+	progress bar;
 	pm_scene s;
 	pm_vec3 *verts;
 	pm_accel *a;
@@ -48,15 +54,19 @@ main(int argc, char **argv)
 
 	util_init(argc, argv);
 	opterr = 0;
-	while ((c = getopt(argc, argv, "hj:n:o:qs:t:")) != -1) {
+	while ((c = getopt(argc, argv, "hj:n:o:P:qs:t:")) != -1) {
 		switch (c) {
 		case 'h': help();
 		case 'j': threads = (int)parse_int(optarg, 0, 4096, "-j", usage); break;
 		case 'n': o.nphotons = (uint64_t)parse_int(optarg, 0, 4000000000LL, "-n", usage); break;
 		case 'o': out = optarg; break;
+		case 'P':
+			if (pm_pass_parse(optarg, &pass_i, &pass_n, &err) != 0)
+				usage_err(usage, "-P: %s", err.msg);
+			break;
 		case 'q': quiet = 1; break;
-		case 's': o.seed = parse_u64(optarg, "-s", usage); break;
-		case 't': o.time = (float)parse_real(optarg, 0, 1, "-t", usage); break;
+		case 's': o.seed = parse_u64(optarg, "-s", usage); have_seed = 1; break;
+		case 't': o.time = (float)parse_real(optarg, 0, 1, "-t", usage); have_time = 1; break;
 		default: usage_err(usage, "unknown option '%s'", argv[optind - 1]);
 		}
 	}
@@ -64,6 +74,15 @@ main(int argc, char **argv)
 		usage_err(usage, argc - optind == 0 ? "no scene given" : "too many arguments");
 	if (strcmp(out, "-") == 0 && isatty(1))
 		die("refusing to write binary photons to a terminal: use -o FILE or a pipe");
+	if (pass_n) {
+		uint64_t seed;
+		float time;
+		pm_pass_derive(pass_i, pass_n, &seed, &time);
+		if (!have_seed)
+			o.seed = seed;
+		if (!have_time)
+			o.time = time;
+	}
 	set_threads(threads);
 
 	if (pm_scene_load(&s, argv[optind], &err) != 0)
@@ -74,8 +93,12 @@ main(int argc, char **argv)
 	pm_scene_verts_at(&s, o.time, verts);
 	if (pm_accel_build(&a, &s, verts, &err) != 0 || pm_lights_build(&L, &s, verts, o.time, &err) != 0)
 		die_err(&err);
+	progress_start(&bar, "photons", o.nphotons, quiet);
+	o.progress = progress_hook;
+	o.progress_arg = &bar;
 	if (pm_shoot(&s, a, &L, &o, &ph, &err) != 0)
 		die_err(&err);
+	progress_end(&bar, ph.h.count);
 	if (ph.h.count < o.nphotons && !quiet)
 		warn("'%s': only %llu of %llu photons stored after %llu light paths",
 		     argv[optind], (unsigned long long)ph.h.count,

@@ -1,0 +1,12 @@
+#!/bin/sh
+# xargs.sh — fan-out way 2 of 4: the N pass pairs with xargs -P, P at a time
+# (default: the number of cores), then their average.
+# Usage: xargs.sh SCENE DIR   (N=8, P=cores; pass settings as in pass.sh)
+set -eu
+here=$(cd "$(dirname "$0")" && pwd)
+scene=$(cd "$(dirname "$1")" && pwd)/$(basename "$1")
+N=${N:-8} P=${P:-$(nproc)}
+bin=${PM_BIN:+$PM_BIN/}
+mkdir -p "$2" && cd "$2"
+seq 1 "$N" | xargs -P "$P" -I{} sh "$here/pass.sh" {} "$N" "$scene"
+"${bin}pm-average" -q $(seq -f 'pass-%g.exr' 1 "$N") -o average.exr

@@ -1,0 +1,29 @@
+/* pass.h — pass I of N: the seed and shutter time a pass pair derives from
+ * its index, so that any scheduler (a shell loop, xargs, GNU parallel on many
+ * hosts, make) can run any subset of passes in any order and get the same
+ * images, and both halves of a pair (light pass, view pass) agree.
+ *
+ * With 1 <= I <= N < 2^32 and splitmix64 the finalizer of rng.h (pm_mix64):
+ *   seed = splitmix64(N * 2^32 + I)
+ *   u    = (splitmix64(seed) >> 40) / 2^24            (in [0, 1))
+ *   time = (float)((I - 1 + u) / N)                   (in [0, 1))
+ * so the N passes of a set stratify the shutter interval, one jittered time
+ * in each of N equal strata (paper §4: each pass pair takes its own time),
+ * and sets of different N (rounds of a progressive run) use different seeds.
+ * README.md and the pm-shoot / pm-render man pages restate this. */
+#ifndef PM_PASS_H
+#define PM_PASS_H
+
+#include <stdint.h>
+
+#include "err.h"
+
+/* Parses "I/N" (decimal, 1 <= I <= N <= 2^32 - 1). On failure err says what
+ * is wrong (without naming an option). */
+int pm_pass_parse(const char *s, uint32_t *i, uint32_t *n, pm_error *err);
+
+/* The seed and time of pass i of n (see above); i and n as pm_pass_parse
+ * accepts them. */
+void pm_pass_derive(uint32_t i, uint32_t n, uint64_t *seed, float *time);
+
+#endif
