@@ -108,6 +108,7 @@ typedef struct visit_ctx {
 	int nseen;                 /* polygons with area in the cube ... */
 	uint32_t seen[MAX_SEEN];   /* ... their numbers */
 	pm_dvec3 seen_n[MAX_SEEN]; /* ... unit normals */
+	double seen_a[MAX_SEEN];   /* ... areas in the cube */
 } visit_ctx;
 
 /* Polygon g's share of a photon's target area per unit of its area (the
@@ -165,6 +166,7 @@ visit(void *vctx, uint32_t g)
 	q->polys++;
 	if (q->nseen < MAX_SEEN) {
 		q->seen[q->nseen] = g;
+		q->seen_a[q->nseen] = A;
 		q->seen_n[q->nseen++] = N;
 	}
 
@@ -270,10 +272,11 @@ hide_overlaps(visit_ctx *q)
 			q->ap[j] = 0;
 }
 
-/* 1 if point p (in polygon g's plane, relative to x) is inside polygon g:
- * crossing number in the coordinate plane the polygon projects best to. */
+/* 1 if point p (in polygon g's plane, relative to x) is inside polygon g by
+ * more than eps: crossing number in the coordinate plane the polygon
+ * projects best to. Points within eps of an edge count as edge_in says. */
 static int
-inside(const visit_ctx *q, uint32_t g, pm_dvec3 N, pm_dvec3 p)
+inside(const visit_ctx *q, uint32_t g, pm_dvec3 N, pm_dvec3 p, double eps, int edge_in)
 {
 	const pm_scene *s = q->pi->s;
 	int ax = fabs(N.x) > fabs(N.y) ? (fabs(N.x) > fabs(N.z) ? 0 : 2) : (fabs(N.y) > fabs(N.z) ? 1 : 2);
@@ -284,7 +287,12 @@ inside(const visit_ctx *q, uint32_t g, pm_dvec3 N, pm_dvec3 p)
 	for (uint32_t i = 0, j = n - 1; i < n; j = i++) {
 		pm_dvec3 vi = pm_dsub(pm_dfromf(q->pi->verts[s->poly_vert[a + i]]), q->x);
 		pm_dvec3 vj = pm_dsub(pm_dfromf(q->pi->verts[s->poly_vert[a + j]]), q->x);
+		pm_dvec3 e = pm_dsub(vi, vj), r = pm_dsub(p, vj);
 		double I[3] = {vi.x, vi.y, vi.z}, J[3] = {vj.x, vj.y, vj.z};
+		double ee = pm_ddot(e, e), t = ee > 0 ? fmin(1, fmax(0, pm_ddot(r, e) / ee)) : 0;
+		pm_dvec3 off = pm_dsub(r, pm_dscale(e, t));
+		if (pm_ddot(off, off) <= eps * eps)
+			return edge_in;
 		if ((I[v] > P[v]) != (J[v] > P[v]) &&
 		    P[u] < (J[u] - I[u]) * (P[v] - I[v]) / (J[v] - I[v]) + I[u])
 			in = !in;
@@ -292,61 +300,114 @@ inside(const visit_ctx *q, uint32_t g, pm_dvec3 N, pm_dvec3 p)
 	return in;
 }
 
-/* Photons behind a polygon as seen from x — on the far side of a thin wall,
- * under a rug, behind a picture — carry light that cannot reach x: the
- * segment from x to the photon crosses that polygon inside the cube, or the
- * photon lies right behind x's own surface. They are left out (w = 0).
- * Photons on polygons meeting x's surface at an edge are not: the segment
- * from x runs through free space or the solid's inside without crossing
- * another face. */
+/* g's plane offset of point r (relative to x): > 0 on g's front side. */
+static double
+side(const visit_ctx *q, int gi, pm_dvec3 r)
+{
+	const pm_scene *s = q->pi->s;
+	uint32_t g = q->seen[gi];
+	pm_dvec3 v0 = pm_dsub(pm_dfromf(q->pi->verts[s->poly_vert[s->poly_start[g]]]), q->x);
+
+	return pm_ddot(q->seen_n[gi], pm_dsub(r, v0));
+}
+
+/* 1 if the segment from x to r crosses a polygon of the cube other than
+ * those holding x or r. Crossing points within eps of an edge count: a
+ * wall's edge is where it meets the next wall, and a segment along that
+ * wall passes through it there. */
 static int
-hide_behind(const visit_ctx *q, const pm_vec3 *pos, const int *act, double *w, double eps)
+crosses(const visit_ctx *q, pm_dvec3 r, double eps)
+{
+	for (int gi = 0; gi < q->nseen; gi++) {
+		double sx = side(q, gi, pm_dv3(0, 0, 0)), sr = side(q, gi, r);
+		if (fabs(sx) <= eps || fabs(sr) <= eps || (sx > 0) == (sr > 0))
+			continue;
+		if (inside(q, q->seen[gi], q->seen_n[gi], pm_dscale(r, sx / (sx - sr)), eps, 1))
+			return 1;
+	}
+	return 0;
+}
+
+/* What x cannot see of the cube does not share x's light: photons and
+ * target area behind a thin wall, under a rug, behind a picture, on the far
+ * face of a thin solid. Eq. 4 spreads each photon over all the cube's
+ * geometry facing it, which is right only for geometry lit by the same
+ * field as x. So:
+ *  - a photon is left out (w = 0) if the segment from x to it crosses
+ *    another polygon of the cube; or if it lies on a two-sided sheet,
+ *    having arrived on the side away from x; or if it lies right behind
+ *    x's own surface (its foot point on the plane of x inside a polygon
+ *    holding x);
+ *  - a polygon whose middle x cannot see (the segment crosses another
+ *    polygon) is no target area: its area leaves every A_p.
+ * Photons and faces meeting x's surface at an edge, concave or convex, are
+ * seen (the segment runs through free space or through the solid's inside
+ * without crossing another face) and count, as the paper intends.
+ * unseen_area runs before the weights, unseen_photons after; the latter
+ * returns the number of photons left out. */
+static void
+unseen_area(visit_ctx *q, double eps)
+{
+	const pm_scene *s = q->pi->s;
+	pm_dvec3 v[64 + 6];
+
+	for (int gi = 0; gi < q->nseen; gi++) {
+		pm_dvec3 c = pm_dv3(0, 0, 0);
+		int n;
+		if (fabs(side(q, gi, pm_dv3(0, 0, 0))) <= eps)
+			continue;
+		n = clipped(q, q->seen[gi], q->seen_n[gi], v);
+		if (n < 3)
+			continue;
+		for (int i = 0; i < n; i++)
+			c = pm_dadd(c, v[i]);
+		if (!crosses(q, pm_dscale(c, 1.0 / n), eps))
+			continue;
+		for (int j = 0; j < q->na; j++)
+			q->ap[j] -= q->seen_a[gi] *
+				factor(q, s->objs[s->poly_obj[q->seen[gi]]].solid, q->seen_n[gi], j);
+	}
+	for (int j = 0; j < q->na; j++)
+		if (q->ap[j] < 0)
+			q->ap[j] = 0;
+}
+
+static int
+unseen_photons(const visit_ctx *q, const pm_vec3 *pos, const int *act, double *w, double eps)
 {
 	const pm_scene *s = q->pi->s;
 	int hidden = 0;
 
-	for (int gi = 0; gi < q->nseen; gi++) {
-		uint32_t g = q->seen[gi];
-		pm_dvec3 N = q->seen_n[gi];
-		pm_dvec3 v0 = pm_dsub(pm_dfromf(q->pi->verts[s->poly_vert[s->poly_start[g]]]), q->x);
-		double sx = -pm_ddot(N, v0);     /* x's side of g's plane */
-		if (fabs(sx) <= eps) {
-			/* g holds x: photons right behind it (their foot point on
-			 * g lies in g) are in the pocket behind x's surface. At a
-			 * convex edge the photons behind x's plane have their
-			 * foot point beyond the edge, outside g, and stay. */
-			if (fabs(pm_ddot(N, q->n)) < 1 - PARALLEL_EPS)
-				continue;
-			for (int j = 0; j < q->na; j++) {
-				int i = act[j];
-				pm_dvec3 r;
-				if (!(w[i] > 0))
-					continue;
-				r = pm_dsub(pm_dfromf(pos[i]), q->x);
-				if (pm_ddot(q->n, r) >= -eps)
-					continue;
-				if (inside(q, g, N, pm_dsub(r, pm_dscale(N, pm_ddot(N, pm_dsub(r, v0)))))) {
-					w[i] = 0;
-					hidden++;
-				}
-			}
+	for (int j = 0; j < q->na; j++) {
+		int i = act[j], out = 0;
+		pm_dvec3 r = pm_dsub(pm_dfromf(pos[i]), q->x);
+		if (!(w[i] > 0))
 			continue;
-		}
-		for (int j = 0; j < q->na; j++) {
-			int i = act[j];
-			pm_dvec3 r;
-			double sp, t;
-			if (!(w[i] > 0))
-				continue;
-			r = pm_dsub(pm_dfromf(pos[i]), q->x);
-			sp = pm_ddot(N, pm_dsub(r, v0));
-			if (fabs(sp) <= eps || (sp > 0) == (sx > 0))
-				continue;
-			t = sx / (sx - sp);
-			if (inside(q, g, N, pm_dscale(r, t))) {
-				w[i] = 0;
-				hidden++;
+		out = crosses(q, r, eps);
+		for (int gi = 0; gi < q->nseen && !out; gi++) {
+			uint32_t g = q->seen[gi];
+			pm_dvec3 N = q->seen_n[gi];
+			double sx = side(q, gi, pm_dv3(0, 0, 0)), sr = side(q, gi, r);
+			pm_dvec3 foot;
+			if (fabs(sx) <= eps) {
+				/* g holds x: is the photon right behind it? */
+				if (fabs(pm_ddot(N, q->n)) < 1 - PARALLEL_EPS || pm_ddot(q->n, r) >= -eps)
+					continue;
+				/* A foot point on an edge of a solid's face is a
+				 * photon on the face below a convex edge: it stays.
+				 * A sheet has no faces below its edges: there the
+				 * photon is on the far side of a thin wall. */
+				foot = pm_dsub(r, pm_dscale(N, sr));
+				out = inside(q, g, N, foot, eps, !s->objs[s->poly_obj[g]].solid);
+			} else if (fabs(sr) <= eps && !s->objs[s->poly_obj[g]].solid &&
+			           (pm_ddot(q->psi[j], N) > 0) != (sx > 0)) {
+				/* On a sheet, lit on the side away from x. */
+				out = inside(q, g, N, pm_dsub(r, pm_dscale(N, sr)), eps, 1);
 			}
+		}
+		if (out) {
+			w[i] = 0;
+			hidden++;
 		}
 	}
 	return hidden;
@@ -448,8 +509,13 @@ pm_comp_weights(const pm_polyindex *pi, pm_vec3 x, pm_vec3 n,
 	q.ap = sc->ap;
 	pm_polyindex_cube(pi, xd, q.h, visit, &q);
 	z.polys = q.polys;
-	if (q.nseen > 1)
+	/* Beyond float rounding of the vertices, which grows with |x|. */
+	double mx = fmax(fabs(xd.x), fmax(fabs(xd.y), fabs(xd.z)));
+	double eps = 1e-4 * q.h + 8 * FLT_EPSILON * mx;
+	if (q.nseen > 1) {
 		hide_overlaps(&q);
+		unseen_area(&q, eps);
+	}
 
 	/* Eq. 2 and 3: Phi_p / A_p (Psi_p . N). A photon with no front-facing
 	 * area cannot be spread: skip it. The threshold scales with Psi . n so
@@ -461,11 +527,8 @@ pm_comp_weights(const pm_polyindex *pi, pm_vec3 x, pm_vec3 n,
 		else
 			z.skipped++;
 	}
-	if (q.nseen > 1) {
-		/* Beyond float rounding of the vertices, which grows with |x|. */
-		double mx = fmax(fabs(xd.x), fmax(fabs(xd.y), fabs(xd.z)));
-		z.hidden = hide_behind(&q, pos, sc->act, w, 1e-4 * q.h + 8 * FLT_EPSILON * mx);
-	}
+	if (q.nseen > 1)
+		z.hidden = unseen_photons(&q, pos, sc->act, w, eps);
 out:
 	if (st)
 		*st = z;

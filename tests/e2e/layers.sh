@@ -29,3 +29,30 @@ num_near "picture in front of a wall reads 2" "$(kv picture.txt mean)" 2 0.05
 num_near "rug on the floor reads 2" "$(kv rug.txt mean)" 2 0.05
 num_near "box resting on the floor reads 2" "$(kv box.txt mean)" 2 0.05
 num_near "nowhere below 1.8" "$(kv all.txt min)" 2 0.2
+
+# Thin walls: a closed room split in two by a wall 2 cm thick (a solid box)
+# or by a two-sided sheet; the floor, ceiling and side walls run through
+# under and beside it as single polygons; the light is in the far half. No
+# light can reach the near half: every pixel there is exactly 0. Photons on
+# the far side's floor lie inside the cube of points near the wall's foot;
+# the compensated estimate must not let them through (the classical one
+# does).
+for wall in "box w -2 0 -0.01  2 2.5 0.01" "quad w -2 0 0  2 0 0  2 2.5 0  -2 2.5 0"; do
+	cat >thin.pms <<SCENE
+camera eye 0 1 2.9  look 0 0.2 0  up 0 1 0  fov 60  size 48 36
+material w diffuse albedo 0.6 0.6 0.6
+material lamp diffuse albedo 0 0 0 emit 10 10 10
+box w -2 0 -3  2 2.5 3 inward
+$wall
+quad lamp -0.5 2.49 -2  0.5 2.49 -2  0.5 2.49 -1  -0.5 2.49 -1
+SCENE
+	kind=${wall%% *}
+	pm-shoot -n 100000 -s 1 thin.pms | pm-build -o thin.pm
+	for est in classical compensated; do
+		pm-render -e $est -k 50 -p 2 -s 1 thin.pms thin.pm -o thin-$est.exr
+		"$tools/exrstat" thin-$est.exr >thin-$est.txt
+		echo "# $kind wall, $est: max $(kv thin-$est.txt max)"
+	done
+	check "no light through a thin $kind wall (compensated)" test "$(kv thin-compensated.txt max)" = 0
+	check "the classical estimate leaks through the $kind wall" test "$(kv thin-classical.txt max)" != 0
+done
