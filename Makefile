@@ -7,7 +7,7 @@ LIB_CXX  := $(wildcard lib/*.cpp)
 LIB_OBJ  := $(LIB_C:%.c=$(B)/%.o) $(LIB_CXX:%.cpp=$(B)/%.o)
 TOOL_SRC := $(wildcard tools/pm-*.c)
 TOOLS    := $(TOOL_SRC:tools/%.c=$(B)/bin/%)
-UTIL_OBJ := $(B)/tools/util.o
+UTIL_OBJ := $(B)/tools/util.o $(B)/tools/progress.o
 UNIT_SRC := $(wildcard tests/unit/test_*.c)
 UNITS    := $(UNIT_SRC:tests/unit/%.c=$(B)/tests/%)
 
@@ -25,7 +25,7 @@ $(B)/libpm.a: $(LIB_OBJ)
 	@rm -f $@
 	$(AR) rcs $@ $^
 
-$(B)/tools/%.o: tools/%.c tools/util.h $(wildcard lib/*.h) config.mk
+$(B)/tools/%.o: tools/%.c tools/util.h tools/progress.h $(wildcard lib/*.h) config.mk
 	@mkdir -p $(@D)
 	$(CC) $(CFLAGS) $(PKG_CFLAGS) -Itools -c $< -o $@
 
@@ -43,17 +43,21 @@ deps:
 
 check: deps
 	@$(MAKE) --no-print-directory all-tests
-	@sh tests/run.sh $(B)
+	@$(MAKE) --no-print-directory asan-tests
+	@sh tests/run.sh $(B) $(B)-asan
 
 all-tests: $(TOOLS) $(UNITS)
 
 demo: deps
 	@$(MAKE) --no-print-directory all
 	@sh examples/cornell/run.sh
+	@sh examples/room/compare.sh
 
 install: all
 	install -d $(DESTDIR)$(PREFIX)/bin
 	install -m 755 $(TOOLS) $(DESTDIR)$(PREFIX)/bin
+	install -d $(DESTDIR)$(PREFIX)/share/man/man1
+	install -m 644 $(wildcard man/pm-*.1) $(DESTDIR)$(PREFIX)/share/man/man1
 
 clean:
 	rm -rf $(B)
@@ -69,3 +73,80 @@ $(B)/tests/tools/%: tests/tools/%.c $(B)/libpm.a
 	@mkdir -p $(@D)
 	$(CC) $(CFLAGS) $(PKG_CFLAGS) -Itests -c $< -o $@.o
 	$(CXX) $(LDFLAGS) $@.o $(B)/libpm.a $(LDLIBS) -o $@
+
+# Fuzz targets (tests/fuzz/): every target also builds as a replay program
+# that runs given files once each, so make check replays the seed corpus and
+# the regression inputs without clang. `make fuzz` builds them with libFuzzer.
+FUZZ_SRC     := $(wildcard tests/fuzz/fuzz_*.c)
+FUZZ_TARGETS := $(FUZZ_SRC:tests/fuzz/fuzz_%.c=%)
+all-tests: $(FUZZ_TARGETS:%=$(B)/fuzz/replay-%)
+$(B)/fuzz/%.o: tests/fuzz/%.c tests/fuzz/fuzz.h $(wildcard lib/*.h) config.mk
+	@mkdir -p $(@D)
+	$(CC) $(CFLAGS) $(PKG_CFLAGS) -Itests/fuzz -c $< -o $@
+$(B)/fuzz/replay-%: $(B)/fuzz/fuzz_%.o $(B)/fuzz/util.o $(B)/fuzz/replay.o $(B)/libpm.a
+	$(CXX) $(LDFLAGS) $^ $(LDLIBS) -o $@
+
+# The same tests in a second tree built with AddressSanitizer and
+# UndefinedBehaviorSanitizer (compile and link, C and C++); tests/run.sh
+# collects their reports through ASAN_OPTIONS/UBSAN_OPTIONS log_path.
+SAN      := -fsanitize=address,undefined -fno-sanitize-recover=all
+SAN_OPT  := -O1 -g -fno-omit-frame-pointer $(SAN)
+asan-tests:
+	@$(MAKE) --no-print-directory B=$(B)-asan OPT='$(SAN_OPT)' LDFLAGS='-fopenmp $(SAN)' all-tests
+
+# make fuzz [FUZZ_SECONDS=60]: each target under libFuzzer (clang, ASan,
+# UBSan) for FUZZ_SECONDS, from the seed corpus in tests/fuzz/corpus/TARGET
+# (read only; new inputs go to $(FUZZ_B)/corpus/TARGET). Crashes are left
+# as $(FUZZ_B)/crash/TARGET-*; copy them to tests/fuzz/regress/TARGET/.
+FUZZ_B       ?= build-fuzz
+FUZZ_SECONDS ?= 60
+FUZZ_FLAGS   ?= -rss_limit_mb=3072 -timeout=20
+fuzz:
+	@sh mk/deps.sh fuzz
+	@$(MAKE) --no-print-directory B=$(FUZZ_B) CC=clang CXX=clang++ \
+		OPT='-O1 -g -fno-omit-frame-pointer $(SAN) -fsanitize=fuzzer-no-link' \
+		LDFLAGS='-fopenmp $(SAN)' $(FUZZ_B)/libpm.a \
+		$(FUZZ_TARGETS:%=$(FUZZ_B)/fuzz/fuzz_%.o) $(FUZZ_B)/fuzz/util.o
+	@set -e; for t in $(FUZZ_TARGETS); do \
+		clang++ -fopenmp $(SAN) -fsanitize=fuzzer $(FUZZ_B)/fuzz/fuzz_$$t.o \
+			$(FUZZ_B)/fuzz/util.o $(FUZZ_B)/libpm.a $(LDLIBS) -o $(FUZZ_B)/fuzz/fuzz-$$t; \
+	done
+	@mkdir -p $(FUZZ_B)/crash
+	@st=0; for t in $(FUZZ_TARGETS); do \
+		mkdir -p $(FUZZ_B)/corpus/$$t; \
+		echo "fuzz: $$t for $(FUZZ_SECONDS) s"; \
+		$(FUZZ_B)/fuzz/fuzz-$$t -max_total_time=$(FUZZ_SECONDS) $(FUZZ_FLAGS) \
+			-artifact_prefix=$(FUZZ_B)/crash/$$t- -print_final_stats=1 \
+			$(FUZZ_B)/corpus/$$t tests/fuzz/corpus/$$t 2>$(FUZZ_B)/fuzz-$$t.log || st=1; \
+		grep -E '^stat::number_of_executed_units|^stat::new_units_added|^SUMMARY|^==.*ERROR' $(FUZZ_B)/fuzz-$$t.log; \
+	done; exit $$st
+
+# make memcheck: the end-to-end tests with every program under valgrind
+# (tests/memcheck.sh); zero memory errors and zero definite leaks.
+memcheck:
+	@sh mk/deps.sh memcheck
+	@$(MAKE) --no-print-directory all-tests
+	@sh tests/memcheck.sh $(B)
+
+.PHONY: asan-tests fuzz memcheck
+
+# Benchmarks (bench/, BENCHMARKS.md): make bench-quick (minutes), make bench
+# (the full sweep and the paper's workload). Not tests; they print numbers.
+BENCH_SRC  := $(wildcard bench/*.c)
+BENCH      := $(BENCH_SRC:bench/%.c=$(B)/bench/%)
+BENCH_XOBJ := $(patsubst bench/%.cpp,$(B)/bench/%.o,$(wildcard bench/*.cpp))
+$(B)/bench/%.o: bench/%.c $(wildcard lib/*.h) config.mk
+	@mkdir -p $(@D)
+	$(CC) $(CFLAGS) $(PKG_CFLAGS) -c $< -o $@
+$(B)/bench/%.o: bench/%.cpp config.mk
+	@mkdir -p $(@D)
+	$(CXX) $(CXXFLAGS) -c $< -o $@
+$(B)/bench/%: $(B)/bench/%.o $(BENCH_XOBJ) $(B)/libpm.a
+	$(CXX) $(LDFLAGS) $(BENCH_LDFLAGS) $< $(BENCH_XOBJ) $(B)/libpm.a $(LDLIBS) -o $@
+$(B)/bench/hot: BENCH_LDFLAGS = -Wl,--wrap=pm_accel_hit
+bench-progs: $(TOOLS) $(BENCH)
+bench bench-quick: deps
+	@sh mk/deps.sh bench
+	@$(MAKE) --no-print-directory bench-progs
+	@sh bench/run.sh $(if $(filter bench-quick,$@),quick,full) $(B)
+.PHONY: bench bench-quick bench-progs

@@ -2,6 +2,17 @@
 # deps.sh — make sure the Debian packages pm builds and tests with are here.
 # As root, installs what is missing; otherwise prints the apt-get line.
 pkgs="build-essential pkg-config libopenexr-dev libopenmesh-dev libembree-dev libpng-dev parallel"
+# The tests also render the man pages (man-db, groff-base) and run programs
+# on a pty (script, from bsdutils).
+pkgs="$pkgs man-db groff-base bsdutils"
+# Extras for one make target only: `deps.sh fuzz` (make fuzz: clang with
+# libFuzzer and OpenMP), `deps.sh memcheck` (make memcheck: valgrind).
+case "${1:-}" in
+fuzz) pkgs="clang libclang-rt-14-dev libomp-dev" ;;
+memcheck) pkgs="valgrind" ;;
+# `deps.sh bench` (make bench, make bench-quick): plots and the kd-tree anchor.
+bench) pkgs="gnuplot-nox libnanoflann-dev" ;;
+esac
 missing=
 for p in $pkgs; do
 	dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q 'install ok installed' ||
