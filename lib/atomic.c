@@ -38,14 +38,30 @@ pm_out_open(pm_out *o, const char *path, pm_error *err)
 	if (strlen(path) >= 2000)
 		return pm_seterr(err, "'%s': path too long", path);
 	snprintf(o->path, sizeof o->path, "%s", path);
+	/* A device or a FIFO (/dev/null, /dev/stdout, a named pipe) is
+	 * written in place: renaming a file over it would replace the
+	 * device node, not write to it. Errors are still checked at commit. */
+	struct stat st;
+	if (stat(path, &st) == 0 && !S_ISREG(st.st_mode) && !S_ISDIR(st.st_mode)) {
+		o->f = fopen(path, "wb");
+		if (!o->f)
+			return pm_seterr(err, "cannot open '%s': %s", path, strerror(errno));
+		o->fd = fileno(o->f);
+		o->is_stdout = 2;
+		return 0;
+	}
 	dirof(path, dir, sizeof dir);
-	fd = open(dir, O_TMPFILE | O_WRONLY | O_CLOEXEC, 0666);
+	/* PM_ATOMIC_NAMED=1 forces the named fallback, so that tests can
+	 * reach it on file systems that have O_TMPFILE. */
+	const char *named = getenv("PM_ATOMIC_NAMED");
+	fd = named && strcmp(named, "1") == 0 ? -1
+	   : open(dir, O_TMPFILE | O_WRONLY | O_CLOEXEC, 0666);
 	if (fd >= 0) {
 		o->tmpfile_kind = 1;
 	} else {
 		snprintf(base, sizeof base, "%s", path);
 		/* The path's length was checked above, so this fits. */
-		if (snprintf(o->tmp, sizeof o->tmp, "%.2000s/.%.2000s.XXXXXX", dir, basename(base)) < 0)
+		if (snprintf(o->tmp, sizeof o->tmp, "%.2000s/.%.2000s" PM_TMP_MARK "XXXXXX", dir, basename(base)) < 0)
 			return pm_seterr(err, "'%s': bad path", path);
 		fd = mkostemp(o->tmp, O_CLOEXEC);
 		if (fd < 0)
@@ -78,9 +94,14 @@ pm_out_commit(pm_out *o, pm_error *err)
 	if (o->is_stdout) {
 		int bad = fflush(o->f) != 0 || ferror(o->f);
 		e = errno;
+		if (o->is_stdout == 2 && fclose(o->f) != 0 && !bad) {
+			bad = 1;
+			e = errno;
+		}
 		o->f = NULL;
 		if (bad)
-			return pm_seterr(err, "cannot write stdout: %s", strerror(e ? e : EIO));
+			return pm_seterr(err, "cannot write %s%s%s: %s", o->is_stdout == 2 ? "'" : "",
+			                 o->path, o->is_stdout == 2 ? "'" : "", strerror(e ? e : EIO));
 		return 0;
 	}
 	if (fflush(o->f) != 0 || ferror(o->f) || fsync(o->fd) != 0) {
@@ -95,7 +116,7 @@ pm_out_commit(pm_out *o, pm_error *err)
 		for (int i = 0;; i++) {
 			char dir[4096];
 			dirof(o->path, dir, sizeof dir);
-			snprintf(tmp, sizeof tmp, "%s/.pm-out.%ld.%d", dir, (long)getpid(), i);
+			snprintf(tmp, sizeof tmp, "%s/" PM_TMP_MARK "%ld.%d", dir, (long)getpid(), i);
 			if (linkat(AT_FDCWD, proc, AT_FDCWD, tmp, AT_SYMLINK_FOLLOW) == 0)
 				break;
 			if (errno != EEXIST || i > 100) {
@@ -127,7 +148,9 @@ pm_out_abort(pm_out *o)
 {
 	if (!o->f)
 		return;
-	if (!o->is_stdout) {
+	if (o->is_stdout == 2) {
+		fclose(o->f);
+	} else if (!o->is_stdout) {
 		fclose(o->f);
 		if (o->tmpfile_kind == 2)
 			unlink(o->tmp);

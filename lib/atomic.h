@@ -5,7 +5,17 @@
  * flushes, fsyncs, checks every write error and then links/renames it over
  * the target. Until commit the target is untouched; a process killed before
  * commit leaves no partial file (with O_TMPFILE not even a temporary one).
- * Path "-" means stdout: written directly, errors still checked at commit. */
+ * Path "-" means stdout: written directly, errors still checked at commit.
+ * So is a path naming an existing device or FIFO (/dev/null, /dev/full, a
+ * named pipe): renaming over it would replace the device node.
+ *
+ * Every temporary name contains PM_TMP_MARK (".NAME.pm-tmp-XXXXXX", or
+ * ".pm-tmp-PID.N" for the moment between naming an O_TMPFILE and renaming
+ * it), so a signal handler can find and remove them (tools/util.c does, for
+ * SIGINT, SIGTERM and SIGHUP); only SIGKILL during the named fallback can
+ * leave one behind. PM_ATOMIC_NAMED=1 in the environment forces the named
+ * fallback (for tests). */
+#define PM_TMP_MARK ".pm-tmp-"
 #ifndef PM_ATOMIC_H
 #define PM_ATOMIC_H
 
@@ -16,7 +26,7 @@
 typedef struct pm_out {
 	FILE *f;            /* write here */
 	int fd;             /* fileno(f) */
-	int is_stdout;
+	int is_stdout;      /* 1 stdout, 2 a device or FIFO written in place */
 	int tmpfile_kind;   /* 0 stdout, 1 O_TMPFILE, 2 named temporary */
 	char path[4096];    /* target */
 	char tmp[4096];     /* named temporary, if tmpfile_kind == 2 */

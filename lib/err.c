@@ -5,6 +5,17 @@
 #include <stdio.h>
 #include <string.h>
 
+/* Messages quote what files hold (names, values); a newline or another
+ * control byte there would break the one-line contract or play with the
+ * terminal, so each becomes '?'. */
+static void
+one_line(char *s)
+{
+	for (; *s; s++)
+		if ((unsigned char)*s < 0x20 || *s == 0x7f)
+			*s = '?';
+}
+
 int
 pm_seterr(pm_error *err, const char *fmt, ...)
 {
@@ -15,6 +26,7 @@ pm_seterr(pm_error *err, const char *fmt, ...)
 	va_start(ap, fmt);
 	vsnprintf(err->msg, sizeof err->msg, fmt, ap);
 	va_end(ap);
+	one_line(err->msg);
 	return -1;
 }
 
@@ -33,5 +45,6 @@ pm_preferr(pm_error *err, const char *fmt, ...)
 	/* Bounded so that prefix and message always fit in msg. */
 	if (snprintf(err->msg, sizeof err->msg, "%s: %.*s", pre, (int)(sizeof err->msg - sizeof pre - 3), old) < 0)
 		err->msg[0] = 0;
+	one_line(err->msg);
 	return -1;
 }

@@ -4,7 +4,8 @@
  * pm_error * as its last argument, returns 0 on success and -1 on failure, and
  * on failure leaves a one-line, lowercase message in err->msg (no trailing
  * newline, no program name: the tool adds "pm-NAME: "). Messages about a file
- * name it first, quoted or as FILE:LINE for text formats. */
+ * name it first, quoted or as FILE:LINE for text formats. Control bytes
+ * (a newline in a quoted channel name, say) are replaced by '?'. */
 #ifndef PM_ERR_H
 #define PM_ERR_H
 

@@ -20,10 +20,12 @@
 #include <openexr.h>
 
 #include "atomic.h"
+#include "scene.h"
 
-/* Limits a reader trusts before allocating: 2^28 pixels (16384^2), 256
- * channels, 2^30 samples (4 GiB of floats). */
-#define MAX_PIXELS   ((int64_t)1 << 28)
+/* Limits a reader trusts before allocating: the pixels a scene may ask
+ * for (PM_MAX_PIXELS, 2^25 unless the environment says otherwise: scene.h),
+ * 256 channels, 2^30 samples (4 GiB of floats). */
+#define MAX_PIXELS   ((int64_t)pm_scene_max_pixels())
 #define MAX_CHANNELS 256
 #define MAX_SAMPLES  ((int64_t)1 << 30)
 
@@ -45,7 +47,7 @@ check_size(int64_t w, int64_t h, int64_t nchan, pm_error *err)
 	if (w < 1 || h < 1)
 		return pm_seterr(err, "image size %lldx%lld is empty", (long long)w, (long long)h);
 	if (w > MAX_PIXELS || h > MAX_PIXELS || w * h > MAX_PIXELS)
-		return pm_seterr(err, "image size %lldx%lld exceeds %lld pixels",
+		return pm_seterr(err, "image size %lldx%lld exceeds %lld pixels (PM_MAX_PIXELS)",
 		                 (long long)w, (long long)h, (long long)MAX_PIXELS);
 	if (nchan < 0 || nchan > MAX_CHANNELS)
 		return pm_seterr(err, "%lld channels exceed the limit of %d",

@@ -44,7 +44,10 @@ public:
 	typedef OpenMesh::FaceHandle FaceHandle;
 	typedef std::vector<VertexHandle> VHandles;
 
-	explicit Importer(Mesh &m) : OpenMesh::IO::ImporterT<Mesh>(m) {}
+	// fsize bounds the counts: a mesh has at most one vertex or face per
+	// byte of its file, so a header cannot make us reserve more.
+	Importer(Mesh &m, unsigned long long fsize)
+	    : OpenMesh::IO::ImporterT<Mesh>(m), fsize(fsize) {}
 
 	uint32_t dropped = 0;
 
@@ -68,12 +71,16 @@ public:
 	{
 		if (in.size() > PM_MESH_MAX_FACE_VERTS)
 			throw TooBig{"a face has too many vertices"};
-		if (++nfaces > PM_MESH_MAX_FACES)
+		if (++nfaces > PM_MESH_MAX_FACES || nfaces > fsize)
 			throw TooBig{"too many faces"};
 		VHandles v;
-		for (size_t i = 0; i < in.size(); i++)
+		for (size_t i = 0; i < in.size(); i++) {
+			// OpenMesh trusts the indices its readers hand over.
+			if (!in[i].is_valid() || (size_t)in[i].idx() >= n_vertices())
+				throw TooBig{"a face refers to a vertex that does not exist"};
 			if (v.empty() || v.back() != in[i])
 				v.push_back(in[i]);
+		}
 		while (v.size() > 1 && v.back() == v.front())
 			v.pop_back();
 		FaceHandle fh;
@@ -87,17 +94,18 @@ public:
 	void reserve(unsigned nv, unsigned ne, unsigned nf) override
 	{
 		// Headers (OFF, PLY) announce counts; do not trust them with memory.
-		if (nv > PM_MESH_MAX_VERTS || nf > PM_MESH_MAX_FACES)
-			throw TooBig{"too many vertices or faces"};
+		if (nv > PM_MESH_MAX_VERTS || nf > PM_MESH_MAX_FACES || nv > fsize || nf > fsize)
+			throw TooBig{"the header announces more vertices or faces than the file can hold"};
 		ImporterT<Mesh>::reserve(nv, ne, nf);
 	}
 
 private:
 	uint64_t nverts = 0, nfaces = 0;
+	unsigned long long fsize;
 
 	void count_vertex()
 	{
-		if (++nverts > PM_MESH_MAX_VERTS)
+		if (++nverts > PM_MESH_MAX_VERTS || nverts > fsize)
 			throw TooBig{"too many vertices"};
 	}
 };
@@ -142,6 +150,150 @@ std::string extension(const char *path)
 	return e;
 }
 
+// OpenMesh's PLY reader crashes on some malformed headers (a property
+// before any element, for one), so the header is checked here first against
+// the PLY grammar (Turk 1994, "The PLY Polygon File Format"): magic, one
+// format line, elements with counts the file could hold, typed properties,
+// end_header within 64 KiB. Returns NULL if it is sound, else the problem.
+const char *ply_header_problem(const char *path, unsigned long long fsize)
+{
+	static const char *const types[] = {"char", "uchar", "short", "ushort", "int", "uint",
+		"float", "double", "int8", "uint8", "int16", "uint16", "int32", "uint32",
+		"float32", "float64"};
+	auto is_type = [](const std::string &t) {
+		for (const char *k : types)
+			if (t == k)
+				return true;
+		return false;
+	};
+	FILE *f = std::fopen(path, "rb");
+	if (!f)
+		return "cannot open";
+	std::string all;
+	int c;
+	while (all.size() < 65536 && (c = std::getc(f)) != EOF)
+		all.push_back((char)c);
+	std::fclose(f);
+	std::vector<std::vector<std::string>> lines;
+	size_t pos = 0;
+	bool ended = false;
+	while (pos < all.size()) {
+		size_t nl = all.find('\n', pos);
+		if (nl == std::string::npos)
+			break;
+		std::string line = all.substr(pos, nl - pos);
+		pos = nl + 1;
+		if (!line.empty() && line.back() == '\r')
+			line.pop_back();
+		std::vector<std::string> w;
+		size_t i = 0;
+		while (i < line.size()) {
+			while (i < line.size() && (line[i] == ' ' || line[i] == '\t'))
+				i++;
+			size_t j = i;
+			while (j < line.size() && line[j] != ' ' && line[j] != '\t')
+				j++;
+			if (j > i)
+				w.push_back(line.substr(i, j - i));
+			i = j;
+		}
+		if (!w.empty() && w[0] == "end_header") {
+			ended = true;
+			break;
+		}
+		lines.push_back(w);
+	}
+	if (!ended)
+		return "malformed PLY header (no end_header in the first 64 KiB)";
+	if (lines.empty() || lines[0].size() != 1 || lines[0][0] != "ply")
+		return "malformed PLY header (no 'ply' magic)";
+	bool format = false, element = false;
+	for (size_t i = 1; i < lines.size(); i++) {
+		const auto &w = lines[i];
+		if (w.empty())
+			return "malformed PLY header (empty line)";
+		if (w[0] == "comment" || w[0] == "obj_info")
+			continue;
+		if (w[0] == "format") {
+			if (format || w.size() != 3 || w[2] != "1.0" ||
+			    (w[1] != "ascii" && w[1] != "binary_little_endian" && w[1] != "binary_big_endian"))
+				return "malformed PLY header (bad format line)";
+			format = true;
+		} else if (w[0] == "element") {
+			if (w.size() != 3 || w[2].empty() || w[2].size() > 19 ||
+			    w[2].find_first_not_of("0123456789") != std::string::npos ||
+			    std::strtoull(w[2].c_str(), nullptr, 10) > fsize)
+				return "malformed PLY header (bad element line, or a count the file cannot hold)";
+			element = true;
+		} else if (w[0] == "property") {
+			if (!element)
+				return "malformed PLY header (a property before any element)";
+			bool ok = (w.size() == 3 && is_type(w[1])) ||
+			          (w.size() == 5 && w[1] == "list" && is_type(w[2]) && is_type(w[3]));
+			if (!ok)
+				return "malformed PLY header (bad property line)";
+		} else {
+			return "malformed PLY header (unknown keyword)";
+		}
+	}
+	if (!format)
+		return "malformed PLY header (no format line)";
+	return nullptr;
+}
+
+// OpenMesh's OBJ reader asserts (aborts) on a face corner without a vertex
+// index ("f /1 2 3"), so face lines are checked first: every corner must be
+// INDEX[/[TEX][/[NORMAL]]] with a nonzero, possibly negative, INDEX.
+// Returns NULL if they are sound, else the problem.
+const char *obj_faces_problem(const char *path)
+{
+	FILE *f = std::fopen(path, "rb");
+	if (!f)
+		return "cannot open";
+	std::string line;
+	int c;
+	bool bad = false;
+	do {
+		c = std::getc(f);
+		if (c != EOF && c != '\n') {
+			line.push_back((char)c);
+			if (line.size() > (1u << 20)) {
+				bad = true;
+				break;
+			}
+			continue;
+		}
+		size_t i = 0;
+		while (i < line.size() && (line[i] == ' ' || line[i] == '\t'))
+			i++;
+		if (i + 1 < line.size() && line[i] == 'f' && (line[i + 1] == ' ' || line[i + 1] == '\t')) {
+			i++;
+			for (;;) {
+				while (i < line.size() && (line[i] == ' ' || line[i] == '\t' || line[i] == '\r'))
+					i++;
+				if (i >= line.size() || line[i] == '#')
+					break;
+				size_t j = i + (line[i] == '-');
+				size_t d = j;
+				bool zero = true;
+				for (; d < line.size() && line[d] >= '0' && line[d] <= '9'; d++)
+					if (line[d] != '0')
+						zero = false;
+				if (d == j || zero) {
+					bad = true;
+					break;
+				}
+				while (d < line.size() && line[d] != ' ' && line[d] != '\t' && line[d] != '\r')
+					d++;
+				i = d;
+			}
+		}
+		line.clear();
+	} while (c != EOF && !bad);
+	std::fclose(f);
+	return bad ? "malformed OBJ face line (a corner without a vertex index, or index 0)" : nullptr;
+}
+
 int fail(pm_meshdata *out, pm_error *err, const char *path, const char *why)
 {
 	pm_mesh_free(out);
@@ -174,10 +326,21 @@ int read(const char *path, pm_meshdata *out, pm_error *err)
 	if (!ok)
 		return fail(out, err, path, "unknown format (expected .obj, .ply, .off, .stl or .om)");
 
+	if (ext == "obj") {
+		const char *why = obj_faces_problem(path);
+		if (why)
+			return fail(out, err, path, why);
+	}
+	if (ext == "ply") {
+		const char *why = ply_header_problem(path, (unsigned long long)st.st_size);
+		if (why)
+			return fail(out, err, path, why);
+	}
+
 	Quiet quiet;
 
 	Mesh mesh;
-	Importer imp(mesh);
+	Importer imp(mesh, (unsigned long long)st.st_size);
 	OpenMesh::IO::Options opt;
 	try {
 		ok = OpenMesh::IO::IOManager().read(path, imp, opt);

@@ -466,7 +466,9 @@ parse_value(pm_photon_header *h, int key, const char *val, pm_error *err)
 		snprintf(h->seeds, sizeof h->seeds, "%s", val);
 		return 0;
 	case K_COMMAND:
-		if (add_history(&h->history, val))
+		/* An empty line records nothing (and could not be written back:
+		 * the history is a '\n'-joined string). */
+		if (*val && add_history(&h->history, val))
 			return pm_seterr(err, "out of memory");
 		return 0;
 	}

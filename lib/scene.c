@@ -235,6 +235,11 @@ st_camera(parser *p)
 					return perr(p, "camera: size must be whole numbers from 1 to 65535, got %g", d[i]);
 			c->width = (int)d[0];
 			c->height = (int)d[1];
+			uint64_t lim = pm_scene_max_pixels();
+			if ((uint64_t)c->width * (uint64_t)c->height > lim)
+				return perr(p, "camera: size %dx%d is more than %llu pixels "
+				            "(a typo? set PM_MAX_PIXELS to allow more)",
+				            c->width, c->height, (unsigned long long)lim);
 			break;
 		}
 	}
@@ -1017,6 +1022,23 @@ out:
 	if (r)
 		pm_scene_free(s);
 	return r;
+}
+
+uint64_t
+pm_scene_max_pixels(void)
+{
+	const char *e = getenv("PM_MAX_PIXELS");
+	char *end;
+	unsigned long long v;
+
+	if (!e || !*e)
+		return PM_MAX_PIXELS;
+	errno = 0;
+	v = strtoull(e, &end, 10);
+	/* A malformed override keeps the default rather than lifting it. */
+	if (errno || *end || e[0] == '-' || v < 1)
+		return PM_MAX_PIXELS;
+	return v;
 }
 
 void

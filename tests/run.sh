@@ -48,7 +48,11 @@ for B in $dirs; do
 		*/replay-*)
 			# every seed and every past crash of this target
 			tgt=${t##*/replay-}
-			(cd "$w" && "$t" "$top/tests/fuzz/corpus/$tgt" "$top/tests/fuzz/regress/$tgt") >"$tmp/out" 2>"$tmp/err" ;;
+			set --
+			for d in "$top/tests/fuzz/corpus/$tgt" "$top/tests/fuzz/regress/$tgt"; do
+				[ -d "$d" ] && set -- "$@" "$d"
+			done
+			(cd "$w" && "$t" "$@") >"$tmp/out" 2>"$tmp/err" ;;
 		*) (cd "$w" && "$t") >"$tmp/out" 2>"$tmp/err" ;;
 		esac
 		rc=$?

@@ -141,5 +141,10 @@ main(int argc, char **argv)
 	       "pixels: %lld\n", d.rmse, d.relmse, d.mae, d.max_abs, d.mean_a, d.mean_b, d.pixels);
 	if (fflush(stdout) != 0 || ferror(stdout))
 		die("cannot write stdout");
+	pm_image_free(&a);
+	pm_image_free(&b);
+	if (maskpath)
+		pm_image_free(&m);
+	free(inv);
 	return 0;
 }

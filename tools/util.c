@@ -2,21 +2,104 @@
 #define _GNU_SOURCE
 #include "util.h"
 
+#include <dirent.h>
 #include <errno.h>
+#include <fcntl.h>
 #include <math.h>
 #include <omp.h>
+#include <signal.h>
 #include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/syscall.h>
 #include <unistd.h>
+
+#include "atomic.h"
 
 const char *argv0 = "pm";
 static char cmdbuf[8192];
 
+/* On SIGINT, SIGTERM or SIGHUP: removes the named temporary files this
+ * process has open (lib/atomic.h: their names hold PM_TMP_MARK), then dies
+ * of the same signal. It finds them through /proc/self/fd with raw system
+ * calls only, all async-signal-safe, so it needs no record of pm_out
+ * objects. An O_TMPFILE output has no name and vanishes by itself. */
+static void
+on_signal(int sig)
+{
+	char buf[4096], link[64], target[4096];
+	int dfd = open("/proc/self/fd", O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+	long n;
+
+	while (dfd >= 0 && (n = syscall(SYS_getdents64, dfd, buf, sizeof buf)) > 0) {
+		for (long off = 0; off < n;) {
+			struct dirent64 *d = (struct dirent64 *)(buf + off);
+			ssize_t len;
+			off += d->d_reclen;
+			if (d->d_name[0] < '0' || d->d_name[0] > '9')
+				continue;
+			/* "/proc/self/fd/" + name, without snprintf */
+			size_t k = 0;
+			for (const char *s = "/proc/self/fd/"; *s; s++)
+				link[k++] = *s;
+			for (const char *s = d->d_name; *s && k < sizeof link - 1; s++)
+				link[k++] = *s;
+			link[k] = 0;
+			len = readlink(link, target, sizeof target - 1);
+			if (len <= 0)
+				continue;
+			target[len] = 0;
+			const char *base = strrchr(target, '/');
+			if (base && base[1] == '.' && strstr(base, PM_TMP_MARK) && !strstr(base, " (deleted)"))
+				unlink(target);
+		}
+	}
+	if (dfd >= 0)
+		close(dfd);
+	signal(sig, SIG_DFL);
+	raise(sig);
+}
+
+/* Set by die and usage_err: their message is the one to show. */
+static int failing;
+
+/* At exit: closing stdout is part of success (a full disk must not pass
+ * silently, whatever wrote there: help text, statistics, a stream). */
+static void
+close_stdout(void)
+{
+	int bad = fflush(stdout) != 0 || ferror(stdout);
+	int e = errno;
+
+	if (fclose(stdout) != 0 && !bad) {
+		bad = 1;
+		e = errno;
+	}
+	if (bad && !failing) {
+		fprintf(stderr, "%s: cannot write stdout: %s\n", argv0, strerror(e ? e : EIO));
+		_exit(1);
+	}
+}
+
 void
 util_init(int argc, char **argv)
 {
+	static const int sigs[] = { SIGINT, SIGTERM, SIGHUP };
+
+	atexit(close_stdout);
+
+	for (size_t i = 0; i < sizeof sigs / sizeof sigs[0]; i++) {
+		struct sigaction sa;
+		memset(&sa, 0, sizeof sa);
+		sa.sa_handler = on_signal;
+		sigemptyset(&sa.sa_mask);
+		/* Left alone when ignored (nohup, a shell's background job). */
+		struct sigaction old;
+		if (sigaction(sigs[i], NULL, &old) == 0 && old.sa_handler != SIG_IGN)
+			sigaction(sigs[i], &sa, NULL);
+	}
+
 	const char *slash = strrchr(argv[0], '/');
 	size_t n = 0;
 
@@ -65,6 +148,7 @@ die(const char *fmt, ...)
 {
 	va_list ap;
 
+	failing = 1;
 	va_start(ap, fmt);
 	vmsg(fmt, ap);
 	va_end(ap);
@@ -96,6 +180,7 @@ usage_err(const char *usage, const char *fmt, ...)
 	vmsg(fmt, ap);
 	va_end(ap);
 	fprintf(stderr, "usage: %s\n", usage);
+	failing = 1;
 	exit(2);
 }
 

@@ -22,10 +22,11 @@ main(int argc, char **argv)
 		return 1;
 	}
 	if (argc == 3) {
-		if (!(v = pm_image_attr(&img, argv[2])))
-			return 1;
-		printf("%s\n", v);
-		return 0;
+		int found = (v = pm_image_attr(&img, argv[2])) != NULL;
+		if (found)
+			printf("%s\n", v);
+		pm_image_free(&img);
+		return !found;
 	}
 	for (int i = 0; i < img.nattr; i++)
 		printf("%s=%s\n", img.attr[i].key, img.attr[i].value);

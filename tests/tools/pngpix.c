@@ -33,8 +33,10 @@ main(int argc, char **argv)
 	if (argc == 4) {
 		x = atoi(argv[2]);
 		y = atoi(argv[3]);
-		if (x < 0 || y < 0 || (unsigned)x >= im.width || (unsigned)y >= im.height)
+		if (x < 0 || y < 0 || (unsigned)x >= im.width || (unsigned)y >= im.height) {
+			free(buf);
 			return 1;
+		}
 		printf("%d %d %d\n", buf[(y * im.width + x) * 3], buf[(y * im.width + x) * 3 + 1],
 		       buf[(y * im.width + x) * 3 + 2]);
 	}
