@@ -33,6 +33,7 @@ help(void)
 	       "  -k K        nearest photons per estimate (default 50)\n"
 	       "  -o OUT.exr  output image (required)\n"
 	       "  -p SAMPLES  camera samples per pixel (default 4)\n"
+	       "  --max-samples N  refuse -p above N, against typos (default 65536)\n"
 	       "  -P I/N      pass I of N: seed and time derived from I and N, as pm-shoot -P\n"
 	       "              does (see pm-render(1)); -s and -t override them (default: no pass)\n"
 	       "  -q          quiet: no progress bar\n"
@@ -57,12 +58,13 @@ main(int argc, char **argv)
 {
 	static const struct option longopts[] = {
 		{"force", no_argument, NULL, 'F'},
+		{"max-samples", required_argument, NULL, 'M'},
 		{"help", no_argument, NULL, 'h'},
 		{0, 0, 0, 0},
 	};
 	pm_render_opts o = {.estimator = PM_EST_COMPENSATED, .k = 50, .spp = 4};
 	const char *out = NULL, *mapname = NULL;
-	int c, threads = 0, force = 0, have_time = 0, have_seed = 0, quiet = 0;
+	int c, threads = 0, force = 0, have_time = 0, have_seed = 0, quiet = 0, max_spp = 65536;
 	uint32_t pass_i = 0, pass_n = 0;
 	progress bar;
 	float time = 0;
@@ -89,7 +91,8 @@ main(int argc, char **argv)
 		case 'j': threads = (int)parse_int(optarg, 0, 4096, "-j", usage); break;
 		case 'k': o.k = (int)parse_int(optarg, 1, 100000, "-k", usage); break;
 		case 'o': out = optarg; break;
-		case 'p': o.spp = (int)parse_int(optarg, 1, 1 << 20, "-p", usage); break;
+		case 'M': max_spp = (int)parse_int(optarg, 1, 1 << 30, "--max-samples", usage); break;
+		case 'p': o.spp = (int)parse_int(optarg, 1, 1 << 30, "-p", usage); break;
 		case 'P':
 			if (pm_pass_parse(optarg, &pass_i, &pass_n, &err) != 0)
 				usage_err(usage, "-P: %s", err.msg);
@@ -111,6 +114,9 @@ main(int argc, char **argv)
 		          pm_estimator_name(o.estimator));
 	if (!out)
 		usage_err(usage, "no output given (-o OUT.exr)");
+	if (o.spp > max_spp)
+		usage_err(usage, "-p: %d is more than %d samples per pixel (a typo? --max-samples raises the limit)",
+		          o.spp, max_spp);
 	if (pass_n) {
 		/* Both halves of a pair derive the same seed and time. */
 		uint64_t pseed;

@@ -25,6 +25,7 @@ help(void)
 	printf("usage: %s\n"
 	       "Traces photons from the lights of SCENE and writes a photon file (formats/photons.md).\n"
 	       "  -n PHOTONS  photons to store (default 200000)\n"
+	       "  --max-photons N  refuse -n above N, against typos (default 100000000: 2 GB)\n"
 	       "  -o FILE     output file, - for stdout (default -)\n"
 	       "  -P I/N      pass I of N: seed and time derived from I and N (see pm-shoot(1));\n"
 	       "              -s and -t, if given, override them (default: no pass)\n"
@@ -39,7 +40,13 @@ help(void)
 int
 main(int argc, char **argv)
 {
+	static const struct option longopts[] = {
+		{"help", no_argument, NULL, 'h'},
+		{"max-photons", required_argument, NULL, 'M'},
+		{0, 0, 0, 0},
+	};
 	pm_shoot_opts o = {.nphotons = 200000};
+	uint64_t max_photons = 100000000;
 	const char *out = "-";
 	int c, threads = 0, quiet = 0, have_seed = 0, have_time = 0;
 	uint32_t pass_i = 0, pass_n = 0;
@@ -54,10 +61,11 @@ main(int argc, char **argv)
 
 	util_init(argc, argv);
 	opterr = 0;
-	while ((c = getopt(argc, argv, "hj:n:o:P:qs:t:")) != -1) {
+	while ((c = getopt_long(argc, argv, "hj:n:o:P:qs:t:", longopts, NULL)) != -1) {
 		switch (c) {
 		case 'h': help();
 		case 'j': threads = (int)parse_int(optarg, 0, 4096, "-j", usage); break;
+		case 'M': max_photons = (uint64_t)parse_int(optarg, 0, 4000000000LL, "--max-photons", usage); break;
 		case 'n': o.nphotons = (uint64_t)parse_int(optarg, 0, 4000000000LL, "-n", usage); break;
 		case 'o': out = optarg; break;
 		case 'P':
@@ -72,6 +80,9 @@ main(int argc, char **argv)
 	}
 	if (argc - optind != 1)
 		usage_err(usage, argc - optind == 0 ? "no scene given" : "too many arguments");
+	if (o.nphotons > max_photons)
+		usage_err(usage, "-n: %llu is more than %llu photons (a typo? --max-photons raises the limit)",
+		          (unsigned long long)o.nphotons, (unsigned long long)max_photons);
 	if (strcmp(out, "-") == 0 && isatty(1))
 		die("refusing to write binary photons to a terminal: use -o FILE or a pipe");
 	if (pass_n) {

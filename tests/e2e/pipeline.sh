@@ -79,3 +79,13 @@ expect_fail "a photon file is not a map" 1 "run it through pm-build" \
 	pm-render -e classical box.pms shot1.pm -o y.exr
 expect_fail "missing scene named" 1 "nonexistent.pms" pm-shoot nonexistent.pms -o z.pm
 expect_fail "estimator needs a map" 2 "needs a photon map" pm-render -e classical box.pms -o y.exr
+
+# Limits a typo cannot blow past, and the options that raise them.
+expect_fail "pm-shoot -n above the limit refused" 2 "more than 100000000 photons" pm-shoot -n 200000000 box.pms -o big.pm
+check "nothing written past the limit" test ! -e big.pm
+expect_fail "--max-photons lowers the limit" 2 "more than 1000 photons" pm-shoot --max-photons 1000 -n 2000 box.pms -o big.pm
+pm-shoot --max-photons 200000000 -n 100 box.pms -o small.pm
+check "--max-photons raises the limit" test -s small.pm
+expect_fail "pm-render -p above the limit refused" 2 "more than 65536 samples" pm-render -e path -p 100000 box.pms -o big.exr
+pm-render -e path --max-samples 100 -p 70 box.pms -o ok.exr 2>/dev/null
+check "--max-samples accepts up to the limit" test -s ok.exr
