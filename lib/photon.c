@@ -627,7 +627,7 @@ pm_photons_read_header(pm_photons *out, FILE *f, const char *name, char **raw, p
 int
 pm_photons_read_records(pm_photons *ph, FILE *f, const char *name, pm_error *err)
 {
-	enum { CHUNK = 4096 };
+	enum { CHUNK = 1 << 18 };   /* records encoded at once, in parallel */
 	const pm_photon_header *h = &ph->h;
 	unsigned char *buf;
 	pm_photon *p = NULL;
@@ -751,24 +751,39 @@ check_for_write(const pm_photons *ph, const char *fn, float bbox[6], size_t *hle
 	*hlen = len;
 	for (int a = 0; a < 6; a++)
 		bbox[a] = 0;
+	if (h->count == 0)
+		return 0;
+	/* In parallel: min and max are exact, so the result does not depend
+	 * on the split; a non-finite position is then found again in order,
+	 * so the message names the first. */
+	float l0 = INFINITY, l1 = INFINITY, l2 = INFINITY, u0 = -INFINITY, u1 = -INFINITY, u2 = -INFINITY;
+	int bad = 0;
+	#pragma omp parallel for reduction(min: l0, l1, l2) reduction(max: u0, u1, u2) reduction(|: bad)
 	for (size_t i = 0; i < h->count; i++) {
 		const float *q = ph->p[i].pos;
-		for (int a = 0; a < 3; a++) {
-			if (!isfinite(q[a]))
-				return pm_seterr(err, "%s: photon %zu has a non-finite position", fn, i);
-			if (i == 0 || q[a] < bbox[a])
-				bbox[a] = q[a];
-			if (i == 0 || q[a] > bbox[3 + a])
-				bbox[3 + a] = q[a];
-		}
+		bad |= !isfinite(q[0]) || !isfinite(q[1]) || !isfinite(q[2]);
+		l0 = q[0] < l0 ? q[0] : l0;
+		l1 = q[1] < l1 ? q[1] : l1;
+		l2 = q[2] < l2 ? q[2] : l2;
+		u0 = q[0] > u0 ? q[0] : u0;
+		u1 = q[1] > u1 ? q[1] : u1;
+		u2 = q[2] > u2 ? q[2] : u2;
 	}
+	if (bad)
+		for (size_t i = 0; i < h->count; i++) {
+			const float *q = ph->p[i].pos;
+			if (!isfinite(q[0]) || !isfinite(q[1]) || !isfinite(q[2]))
+				return pm_seterr(err, "%s: photon %zu has a non-finite position", fn, i);
+		}
+	bbox[0] = l0; bbox[1] = l1; bbox[2] = l2;
+	bbox[3] = u0; bbox[4] = u1; bbox[5] = u2;
 	return 0;
 }
 
 int
 pm_photons_write(const pm_photons *ph, FILE *f, const char *name, pm_error *err)
 {
-	enum { CHUNK = 4096 };
+	enum { CHUNK = 1 << 18 };   /* records encoded at once, in parallel */
 	const pm_photon_header *h = &ph->h;
 	unsigned char *buf;
 	float bb[6];
@@ -799,6 +814,7 @@ pm_photons_write(const pm_photons *ph, FILE *f, const char *name, pm_error *err)
 		return pm_seterr(err, "%s: out of memory", fn);
 	for (size_t i = 0; i < h->count; i += CHUNK) {
 		size_t n = h->count - i < CHUNK ? (size_t)(h->count - i) : CHUNK;
+		#pragma omp parallel for schedule(static)
 		for (size_t j = 0; j < n; j++)
 			pm_photon_encode(&ph->p[i + j], buf + j * PM_PHOTON_BYTES);
 		if (fwrite(buf, PM_PHOTON_BYTES, n, f) != n) {

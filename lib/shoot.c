@@ -82,7 +82,6 @@ pm_shoot(const pm_scene *s, const pm_accel *a, const pm_lights *L,
 	uint64_t maxp = o->max_paths ? o->max_paths : 64 * want + (1u << 20);
 	chunk *ch = calloc(BATCH, sizeof *ch);
 	pm_photon *all = NULL;
-	float lo[3] = {FLT_MAX, FLT_MAX, FLT_MAX}, hi[3] = {-FLT_MAX, -FLT_MAX, -FLT_MAX};
 	int done = 0, oom = 0;
 
 	memset(out, 0, sizeof *out);
@@ -108,11 +107,13 @@ pm_shoot(const pm_scene *s, const pm_accel *a, const pm_lights *L,
 			size_t at = 0;
 			oom |= c->oom;
 			for (int j = 0; j < CHUNK && !done; j++) {
+				uint64_t take = c->count[j];
 				emitted++;
-				for (uint32_t q = 0; q < c->count[j]; q++, at++) {
-					if (stored < want)
-						all[stored++] = c->p[at];
-				}
+				if (take > want - stored)
+					take = want - stored;
+				memcpy(all + stored, c->p + at, take * sizeof *all);
+				stored += take;
+				at += c->count[j];
 				if (stored >= want || emitted >= maxp)
 					done = 1;
 			}
@@ -127,20 +128,11 @@ pm_shoot(const pm_scene *s, const pm_accel *a, const pm_lights *L,
 		free(all);
 		return pm_seterr(err, "out of memory while shooting photons");
 	}
-	for (uint64_t i = 0; i < stored; i++)
-		for (int k = 0; k < 3; k++) {
-			lo[k] = fminf(lo[k], all[i].pos[k]);
-			hi[k] = fmaxf(hi[k], all[i].pos[k]);
-		}
 	out->p = all;
 	out->h.version = PM_PHOTONS_VERSION;
 	out->h.kdtree = 0;
 	out->h.count = stored;
 	out->h.emitted = emitted;
-	for (int k = 0; k < 3; k++) {
-		out->h.bbox[k] = stored ? lo[k] : 0;
-		out->h.bbox[3 + k] = stored ? hi[k] : 0;
-	}
 	out->h.scene_hash = s->hash;
 	out->h.time = o->time;
 	snprintf(out->h.seeds, sizeof out->h.seeds, "%llu", (unsigned long long)o->seed);
