@@ -57,6 +57,7 @@ emit(pm_clipper *c, pm_dvec3 v)
 		c->o = v;
 	else
 		c->sum = pm_dadd(c->sum, pm_dcross(pm_dsub(c->prev, c->o), pm_dsub(v, c->o)));
+	c->vsum = pm_dadd(c->vsum, v);
 	c->prev = v;
 	c->nout++;
 }
@@ -109,6 +110,7 @@ pm_clip_begin(pm_clipper *c, double h)
 	c->off = !(h > 0) || !isfinite(h);
 	c->nout = 0;
 	c->sum = pm_dv3(0, 0, 0);
+	c->vsum = pm_dv3(0, 0, 0);
 }
 
 void
@@ -134,6 +136,12 @@ pm_clip_end(pm_clipper *c, pm_dvec3 normal)
 	else
 		a = 0.5 * fabs(pm_ddot(c->sum, normal));
 	return isfinite(a) ? a : 0;
+}
+
+pm_dvec3
+pm_clip_middle(const pm_clipper *c)
+{
+	return c->nout > 0 ? pm_dscale(c->vsum, 1.0 / c->nout) : pm_dv3(0, 0, 0);
 }
 
 double

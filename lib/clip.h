@@ -32,6 +32,7 @@ typedef struct pm_clipper {
 		int count, first_in, prev_in;
 	} st[6];                   /* one per face plane */
 	pm_dvec3 o, prev, sum;     /* area: first output vertex, last, cross sum */
+	pm_dvec3 vsum;             /* sum of the output vertices */
 	int nout;
 } pm_clipper;
 
@@ -47,6 +48,10 @@ void pm_clip_vertex(pm_clipper *c, pm_dvec3 v);
  * a zero vector measures the plain vector area instead). Always finite and
  * >= 0. The clipper may then be reused with pm_clip_begin. */
 double pm_clip_end(pm_clipper *c, pm_dvec3 normal);
+
+/* After pm_clip_end: the mean of the clipped polygon's vertices, a point
+ * inside it when the polygon is convex (0 if nothing was inside). */
+pm_dvec3 pm_clip_middle(const pm_clipper *c);
 
 /* The whole thing for a polygon in an array: v[0..n-1] relative to the
  * centre. */

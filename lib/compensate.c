@@ -109,6 +109,8 @@ typedef struct visit_ctx {
 	uint32_t seen[MAX_SEEN];   /* ... their numbers */
 	pm_dvec3 seen_n[MAX_SEEN]; /* ... unit normals */
 	double seen_a[MAX_SEEN];   /* ... areas in the cube */
+	double seen_d[MAX_SEEN];   /* ... plane offsets N . v relative to x */
+	pm_dvec3 seen_m[MAX_SEEN]; /* ... a point of the clipped part */
 } visit_ctx;
 
 /* Polygon g's share of a photon's target area per unit of its area (the
@@ -144,8 +146,8 @@ visit(void *vctx, uint32_t g)
 		pm_dvec3 r = pm_dsub(pm_dfromf(verts[s->poly_vert[v]]), q->x);
 		double rc[3] = {r.x, r.y, r.z};
 		for (int a = 0; a < 3; a++) {
-			lo[a] = fmin(lo[a], rc[a]);
-			hi[a] = fmax(hi[a], rc[a]);
+			lo[a] = rc[a] < lo[a] ? rc[a] : lo[a];
+			hi[a] = rc[a] > hi[a] ? rc[a] : hi[a];
 		}
 		pm_clip_vertex(&cl, r);
 	}
@@ -167,6 +169,8 @@ visit(void *vctx, uint32_t g)
 	if (q->nseen < MAX_SEEN) {
 		q->seen[q->nseen] = g;
 		q->seen_a[q->nseen] = A;
+		q->seen_d[q->nseen] = pm_ddot(N, pm_dsub(pm_dfromf(verts[s->poly_vert[s->poly_start[g]]]), q->x));
+		q->seen_m[q->nseen] = pm_clip_middle(&cl);
 		q->seen_n[q->nseen++] = N;
 	}
 
@@ -301,14 +305,10 @@ inside(const visit_ctx *q, uint32_t g, pm_dvec3 N, pm_dvec3 p, double eps, int e
 }
 
 /* g's plane offset of point r (relative to x): > 0 on g's front side. */
-static double
+static inline double
 side(const visit_ctx *q, int gi, pm_dvec3 r)
 {
-	const pm_scene *s = q->pi->s;
-	uint32_t g = q->seen[gi];
-	pm_dvec3 v0 = pm_dsub(pm_dfromf(q->pi->verts[s->poly_vert[s->poly_start[g]]]), q->x);
-
-	return pm_ddot(q->seen_n[gi], pm_dsub(r, v0));
+	return pm_ddot(q->seen_n[gi], r) - q->seen_d[gi];
 }
 
 /* 1 if the segment from x to r crosses a polygon of the cube other than
@@ -349,19 +349,9 @@ static void
 unseen_area(visit_ctx *q, double eps)
 {
 	const pm_scene *s = q->pi->s;
-	pm_dvec3 v[64 + 6];
 
 	for (int gi = 0; gi < q->nseen; gi++) {
-		pm_dvec3 c = pm_dv3(0, 0, 0);
-		int n;
-		if (fabs(side(q, gi, pm_dv3(0, 0, 0))) <= eps)
-			continue;
-		n = clipped(q, q->seen[gi], q->seen_n[gi], v);
-		if (n < 3)
-			continue;
-		for (int i = 0; i < n; i++)
-			c = pm_dadd(c, v[i]);
-		if (!crosses(q, pm_dscale(c, 1.0 / n), eps))
+		if (fabs(q->seen_d[gi]) <= eps || !crosses(q, q->seen_m[gi], eps))
 			continue;
 		for (int j = 0; j < q->na; j++)
 			q->ap[j] -= q->seen_a[gi] *
