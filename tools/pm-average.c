@@ -41,17 +41,6 @@ same(const char *a, const char *b)
 	return a == b || (a && b && strcmp(a, b) == 0);
 }
 
-/* getopt's own messages would add a second line; say it once, our way. */
-static void
-bad_option(int opt, char **argv)
-{
-	if (opt == ':')
-		usage_err(usage, "option '%s' needs an argument", argv[optind - 1]);
-	if (optopt)
-		usage_err(usage, "unknown option '-%c'", optopt);
-	usage_err(usage, "unknown option '%s'", argv[optind - 1]);
-}
-
 int
 main(int argc, char **argv)
 {
@@ -81,7 +70,7 @@ main(int argc, char **argv)
 		case 'o': outpath = optarg; break;
 		case 'q': quiet = 1; break;
 		case 's': stats = 1; break;
-		default: bad_option(opt, argv);
+		default: bad_option(usage, opt, argv);
 		}
 	}
 	if (optind >= argc)

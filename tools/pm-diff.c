@@ -66,17 +66,6 @@ write_errmap(const char *path, const float *const pa[3], const float *const pb[3
 	pm_image_free(&e);
 }
 
-/* getopt's own messages would add a second line; say it once, our way. */
-static void
-bad_option(int opt, char **argv)
-{
-	if (opt == ':')
-		usage_err(usage, "option '%s' needs an argument", argv[optind - 1]);
-	if (optopt)
-		usage_err(usage, "unknown option '-%c'", optopt);
-	usage_err(usage, "unknown option '%s'", argv[optind - 1]);
-}
-
 int
 main(int argc, char **argv)
 {
@@ -104,7 +93,7 @@ main(int argc, char **argv)
 		case 'l': layer = optarg; break;
 		case 'm': maskpath = optarg; break;
 		case 'o': errpath = optarg; break;
-		default: bad_option(opt, argv);
+		default: bad_option(usage, opt, argv);
 		}
 	}
 	if (layer && !*layer)

@@ -30,17 +30,6 @@ help(void)
 	       "  -o, --output F     the PNG to write; - for stdout (required)\n", usage, GAP);
 }
 
-/* getopt's own messages would add a second line; say it once, our way. */
-static void
-bad_option(int opt, char **argv)
-{
-	if (opt == ':')
-		usage_err(usage, "option '%s' needs an argument", argv[optind - 1]);
-	if (optopt)
-		usage_err(usage, "unknown option '-%c'", optopt);
-	usage_err(usage, "unknown option '%s'", argv[optind - 1]);
-}
-
 int
 main(int argc, char **argv)
 {
@@ -68,7 +57,7 @@ main(int argc, char **argv)
 		case 'h': help(); return 0;
 		case 'l': layer = optarg; break;
 		case 'o': outpath = optarg; break;
-		default: bad_option(opt, argv);
+		default: bad_option(usage, opt, argv);
 		}
 	}
 	if (layer && !*layer)

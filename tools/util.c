@@ -4,6 +4,7 @@
 
 #include <dirent.h>
 #include <errno.h>
+#include <getopt.h>
 #include <fcntl.h>
 #include <math.h>
 #include <omp.h>
@@ -182,6 +183,16 @@ usage_err(const char *usage, const char *fmt, ...)
 	fprintf(stderr, "usage: %s\n", usage);
 	failing = 1;
 	exit(2);
+}
+
+void
+bad_option(const char *usage, int opt, char **argv)
+{
+	if (opt == ':')
+		usage_err(usage, "option '%s' needs an argument", argv[optind - 1]);
+	if (optopt)
+		usage_err(usage, "unknown option '-%c'", optopt);
+	usage_err(usage, "unknown option '%s'", argv[optind - 1]);
 }
 
 long long

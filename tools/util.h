@@ -19,6 +19,10 @@ _Noreturn void die(const char *fmt, ...) __attribute__((format(printf, 1, 2)));
 _Noreturn void die_err(const pm_error *err);
 /* "pm-NAME: message" plus the usage line, exit 2. */
 _Noreturn void usage_err(const char *usage, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
+/* For getopt_long run with opterr = 0 and optstring ":...": the usage error
+ * for the option getopt just refused (unknown, or missing its argument),
+ * in one line of our own instead of getopt's. Exits 2. */
+_Noreturn void bad_option(const char *usage, int opt, char **argv);
 void warn(const char *fmt, ...) __attribute__((format(printf, 1, 2)));
 
 /* Checked parsers: the whole string must be a number within [lo, hi], else
