@@ -13,13 +13,13 @@ out=${OUT:-$top/examples/out}
 scene=$here/room.pms
 d=$out/figure3
 mkdir -p "$d"
-export bin scene d PHOTONS SPP K
+export bin scene d N PHOTONS SPP K
 # One photon map per pass, rendered twice, then dropped.
 seq 1 "$N" | xargs -P "$P" -I{} sh -c '
 	set -e
-	"$bin/pm-shoot" -q -j 1 -n "$PHOTONS" -s {} "$scene" | "$bin/pm-build" -q -j 1 -o "$d/map-{}.pm"
+	"$bin/pm-shoot" -q -j 1 -n "$PHOTONS" -P {}/"$N" "$scene" | "$bin/pm-build" -q -j 1 -o "$d/map-{}.pm"
 	for est in classical compensated; do
-		"$bin/pm-render" -j 1 -e $est -k "$K" -p "$SPP" -s {} "$scene" "$d/map-{}.pm" -o "$d/$est-{}.exr"
+		"$bin/pm-render" -j 1 -e $est -k "$K" -p "$SPP" -P {}/"$N" "$scene" "$d/map-{}.pm" -o "$d/$est-{}.exr"
 	done
 	rm -f "$d/map-{}.pm"'
 for est in classical compensated; do
