@@ -135,7 +135,7 @@ memcheck:
 BENCH_SRC  := $(wildcard bench/*.c)
 BENCH      := $(BENCH_SRC:bench/%.c=$(B)/bench/%)
 BENCH_XOBJ := $(patsubst bench/%.cpp,$(B)/bench/%.o,$(wildcard bench/*.cpp))
-$(B)/bench/%.o: bench/%.c $(wildcard lib/*.h) config.mk
+$(B)/bench/%.o: bench/%.c bench/timing.h $(wildcard lib/*.h) config.mk
 	@mkdir -p $(@D)
 	$(CC) $(CFLAGS) $(PKG_CFLAGS) -c $< -o $@
 $(B)/bench/%.o: bench/%.cpp config.mk

@@ -31,6 +31,7 @@
 #include "rng.h"
 #include "scene.h"
 #include "shoot.h"
+#include "timing.h"
 
 /* Every pm_accel_hit call from the library goes through here (-Wl,--wrap). */
 int __real_pm_accel_hit(const pm_accel *a, pm_vec3 o, pm_vec3 d, float tmin, float tmax, pm_hit *h);
@@ -42,27 +43,6 @@ __wrap_pm_accel_hit(const pm_accel *a, pm_vec3 o, pm_vec3 d, float tmin, float t
 	return __real_pm_accel_hit(a, o, d, tmin, tmax, h);
 }
 
-static double
-now(void)
-{
-	struct timespec t;
-	clock_gettime(CLOCK_MONOTONIC, &t);
-	return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
-}
-
-static int
-cmpd(const void *a, const void *b)
-{
-	double x = *(const double *)a, y = *(const double *)b;
-	return x < y ? -1 : x > y;
-}
-
-static double
-median(double *v, int n)
-{
-	qsort(v, (size_t)n, sizeof *v, cmpd);
-	return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
 
 static void
 die(const char *what, const char *msg)

@@ -18,33 +18,13 @@
 
 #include "kdtree.h"
 #include "rng.h"
+#include "timing.h"
 
 void *nano_build(const float *xyz, size_t n, size_t stride, int leaf);
 int nano_build_l2_only(const float *xyz, size_t n, size_t stride, int leaf);
 int nano_knn(void *t, const float x[3], int k, int linf, uint32_t *idx, float *dist);
 void nano_free(void *t);
 
-static double
-now(void)
-{
-	struct timespec t;
-	clock_gettime(CLOCK_MONOTONIC, &t);
-	return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
-}
-
-static int
-cmpd(const void *a, const void *b)
-{
-	double x = *(const double *)a, y = *(const double *)b;
-	return x < y ? -1 : x > y;
-}
-
-static double
-median(double *v, int n)
-{
-	qsort(v, (size_t)n, sizeof *v, cmpd);
-	return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
 
 /* A uniform point on one of the five walls (open at z = 1). */
 static void

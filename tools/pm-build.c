@@ -52,16 +52,6 @@ join_seeds(char *acc, size_t cap, const char *add)
 		strcat(acc, ",...");
 }
 
-static const char *
-quoted(const char *name, char *buf, size_t n)
-{
-	if (strcmp(name, "-") == 0)
-		snprintf(buf, n, "stdin");
-	else
-		snprintf(buf, n, "'%s'", name);
-	return buf;
-}
-
 int
 main(int argc, char **argv)
 {
@@ -127,25 +117,25 @@ main(int argc, char **argv)
 		if (ph.h.scene_hash != acc.h.scene_hash) {
 			if (!force)
 				die("%s: scene hash %016llx differs from %s (%016llx); --force merges anyway",
-				    quoted(name, qa, sizeof qa), (unsigned long long)ph.h.scene_hash,
-				    quoted(first, qb, sizeof qb), (unsigned long long)acc.h.scene_hash);
+				    shown_name(name, qa, sizeof qa), (unsigned long long)ph.h.scene_hash,
+				    shown_name(first, qb, sizeof qb), (unsigned long long)acc.h.scene_hash);
 			if (!quiet)
 				warn("%s: scene hash %016llx differs from %s; merging as forced",
-				     quoted(name, qa, sizeof qa), (unsigned long long)ph.h.scene_hash,
-				     quoted(first, qb, sizeof qb));
+				     shown_name(name, qa, sizeof qa), (unsigned long long)ph.h.scene_hash,
+				     shown_name(first, qb, sizeof qb));
 		}
 		if (ph.h.time != acc.h.time) {
 			if (!force)
 				die("%s: time %.9g differs from %s (%.9g); --force merges anyway",
-				    quoted(name, qa, sizeof qa), ph.h.time, quoted(first, qb, sizeof qb), acc.h.time);
+				    shown_name(name, qa, sizeof qa), ph.h.time, shown_name(first, qb, sizeof qb), acc.h.time);
 			if (!quiet)
 				warn("%s: time %.9g differs from %s; the map keeps %.9g",
-				     quoted(name, qa, sizeof qa), ph.h.time, quoted(first, qb, sizeof qb), acc.h.time);
+				     shown_name(name, qa, sizeof qa), ph.h.time, shown_name(first, qb, sizeof qb), acc.h.time);
 		}
 		if (acc.h.count + ph.h.count > UINT32_MAX)
-			die("%s: merged maps would exceed %u photons", quoted(name, qa, sizeof qa), UINT32_MAX);
+			die("%s: merged maps would exceed %u photons", shown_name(name, qa, sizeof qa), UINT32_MAX);
 		if (acc.h.emitted > UINT64_MAX - ph.h.emitted)
-			die("%s: merged emitted count overflows", quoted(name, qa, sizeof qa));
+			die("%s: merged emitted count overflows", shown_name(name, qa, sizeof qa));
 		if (ph.h.count) {
 			pm_photon *p = realloc(acc.p, (size_t)(acc.h.count + ph.h.count) * sizeof *p);
 			if (!p)

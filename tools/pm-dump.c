@@ -35,16 +35,6 @@ static const char help[] =
 
 enum { M_NONE, M_HEADER, M_NEAR, M_PLY, M_STATS, M_TSV };
 
-static const char *
-shown(const char *name, char *buf, size_t n)
-{
-	if (strcmp(name, "-") == 0)
-		snprintf(buf, n, "stdin");
-	else
-		snprintf(buf, n, "'%s'", name);
-	return buf;
-}
-
 static void
 print_header(FILE *o, const char *raw)
 {
@@ -258,7 +248,7 @@ main(int argc, char **argv)
 	if (argc - optind != 1)
 		usage_err(usage, argc - optind ? "give exactly one FILE" : "no FILE given (- reads stdin)");
 	name = argv[optind];
-	shown(name, fn, sizeof fn);
+	shown_name(name, fn, sizeof fn);
 
 	f = strcmp(name, "-") == 0 ? stdin : fopen(name, "rb");
 	if (!f)

@@ -241,6 +241,16 @@ parse_real(const char *s, double lo, double hi, const char *opt, const char *usa
 }
 
 const char *
+shown_name(const char *name, char *buf, size_t n)
+{
+	if (strcmp(name, "-") == 0)
+		snprintf(buf, n, "stdin");
+	else
+		snprintf(buf, n, "'%s'", name);
+	return buf;
+}
+
+const char *
 cmdline(void)
 {
 	return cmdbuf;

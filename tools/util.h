@@ -5,6 +5,7 @@
 #ifndef PM_UTIL_H
 #define PM_UTIL_H
 
+#include <stddef.h>
 #include <stdint.h>
 
 #include "err.h"
@@ -30,6 +31,9 @@ void warn(const char *fmt, ...) __attribute__((format(printf, 1, 2)));
 long long parse_int(const char *s, long long lo, long long hi, const char *opt, const char *usage);
 uint64_t parse_u64(const char *s, const char *opt, const char *usage);
 double parse_real(const char *s, double lo, double hi, const char *opt, const char *usage);
+
+/* A file name as messages show it: quoted, or stdin for "-". Returns buf. */
+const char *shown_name(const char *name, char *buf, size_t n);
 
 /* The full command line, shell-quoted where needed; static storage. */
 const char *cmdline(void);
