@@ -51,3 +51,20 @@ pm_pass_derive(uint32_t i, uint32_t n, uint64_t *seed, float *time)
 	*seed = h;
 	*time = t > 1.0f ? 1.0f : t;
 }
+
+void
+pm_pass_apply(uint32_t i, uint32_t n, uint64_t *seed, int *have_seed,
+              float *time, int *have_time)
+{
+	uint64_t ps;
+	float pt;
+
+	if (n == 0)
+		return;
+	pm_pass_derive(i, n, &ps, &pt);
+	if (!*have_seed)
+		*seed = ps;
+	if (!*have_time)
+		*time = pt;
+	*have_seed = *have_time = 1;
+}

@@ -26,4 +26,10 @@ int pm_pass_parse(const char *s, uint32_t *i, uint32_t *n, pm_error *err);
  * accepts them. */
 void pm_pass_derive(uint32_t i, uint32_t n, uint64_t *seed, float *time);
 
+/* For pass i of n (n = 0: no pass): sets *seed and *time from
+ * pm_pass_derive unless the user gave them (*have_seed, *have_time), and
+ * marks them given. Both halves of a pair call it, so they agree. */
+void pm_pass_apply(uint32_t i, uint32_t n, uint64_t *seed, int *have_seed,
+                   float *time, int *have_time);
+
 #endif

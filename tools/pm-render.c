@@ -117,18 +117,7 @@ main(int argc, char **argv)
 	if (o.spp > max_spp)
 		usage_err(usage, "-p: %d is more than %d samples per pixel (a typo? --max-samples raises the limit)",
 		          o.spp, max_spp);
-	if (pass_n) {
-		/* Both halves of a pair derive the same seed and time. */
-		uint64_t pseed;
-		float ptime;
-		pm_pass_derive(pass_i, pass_n, &pseed, &ptime);
-		if (!have_seed)
-			o.seed = pseed;
-		if (!have_time) {
-			time = ptime;
-			have_time = 1;
-		}
-	}
+	pm_pass_apply(pass_i, pass_n, &o.seed, &have_seed, &time, &have_time);
 	set_threads(threads);
 
 	if (pm_scene_load(&s, argv[optind], &err) != 0)

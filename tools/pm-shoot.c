@@ -85,15 +85,7 @@ main(int argc, char **argv)
 		          (unsigned long long)o.nphotons, (unsigned long long)max_photons);
 	if (strcmp(out, "-") == 0 && isatty(1))
 		die("refusing to write binary photons to a terminal: use -o FILE or a pipe");
-	if (pass_n) {
-		uint64_t seed;
-		float time;
-		pm_pass_derive(pass_i, pass_n, &seed, &time);
-		if (!have_seed)
-			o.seed = seed;
-		if (!have_time)
-			o.time = time;
-	}
+	pm_pass_apply(pass_i, pass_n, &o.seed, &have_seed, &o.time, &have_time);
 	set_threads(threads);
 
 	if (pm_scene_load(&s, argv[optind], &err) != 0)
