@@ -59,6 +59,8 @@ emit(pm_clipper *c, pm_dvec3 v)
 		c->sum = pm_dadd(c->sum, pm_dcross(pm_dsub(c->prev, c->o), pm_dsub(v, c->o)));
 	c->vsum = pm_dadd(c->vsum, v);
 	c->prev = v;
+	if (c->keep && c->nout < c->keepcap)
+		c->keep[c->nout] = v;
 	c->nout++;
 }
 
@@ -111,6 +113,21 @@ pm_clip_begin(pm_clipper *c, double h)
 	c->nout = 0;
 	c->sum = pm_dv3(0, 0, 0);
 	c->vsum = pm_dv3(0, 0, 0);
+	c->keep = NULL;
+	c->keepcap = 0;
+}
+
+void
+pm_clip_keep(pm_clipper *c, pm_dvec3 *buf, int cap)
+{
+	c->keep = buf;
+	c->keepcap = cap;
+}
+
+int
+pm_clip_kept(const pm_clipper *c)
+{
+	return c->off ? 0 : c->nout <= c->keepcap ? c->nout : -1;
 }
 
 void

@@ -34,6 +34,8 @@ typedef struct pm_clipper {
 	pm_dvec3 o, prev, sum;     /* area: first output vertex, last, cross sum */
 	pm_dvec3 vsum;             /* sum of the output vertices */
 	int nout;
+	pm_dvec3 *keep;            /* where to copy the output (pm_clip_keep) */
+	int keepcap;
 } pm_clipper;
 
 /* Starts clipping against the closed cube [-h, h]^3. h <= 0 or not finite
@@ -52,6 +54,12 @@ double pm_clip_end(pm_clipper *c, pm_dvec3 normal);
 /* After pm_clip_end: the mean of the clipped polygon's vertices, a point
  * inside it when the polygon is convex (0 if nothing was inside). */
 pm_dvec3 pm_clip_middle(const pm_clipper *c);
+
+/* After pm_clip_begin: also copy the clipped polygon's vertices, in order,
+ * to buf (room for cap). After pm_clip_end, pm_clip_kept gives their number,
+ * or -1 if there were more than cap. */
+void pm_clip_keep(pm_clipper *c, pm_dvec3 *buf, int cap);
+int pm_clip_kept(const pm_clipper *c);
 
 /* The whole thing for a polygon in an array: v[0..n-1] relative to the
  * centre. */

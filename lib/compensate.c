@@ -1,14 +1,14 @@
 /* compensate.c — the compensated radiance estimate (Hey & Purgathofer 2001,
  * "Global Illumination with Photon Map Compensation", §3, eq. 1-4): photons
  * in the L-infinity cube around x, the photon-surface polygons clipped into
- * it, each photon's flux spread over its own target area A_p, the projection
- * of that geometry across the photon's direction. The rules for the cases
- * the paper leaves open are in compensate.h.
+ * it, each photon's flux spread over its own target area A_p. The model that
+ * decides what counts as target area is in compensate.h.
  *
- * Cost per estimate: one k-nearest search, one pass over the polygons that
- * meet the cube (typically 1-6) clipping each once and adding its projected
- * area to every photon's A_p, and one f_r per photon, as in the classical
- * estimate. All geometry is double and relative to x. */
+ * Cost: one k-nearest search; one pass over the polygons that meet the cube
+ * (typically 1-3), clipping each once; pairwise tests between those
+ * polygons to find which can hide which. Only polygons that something can
+ * hide get sample points, and only their samples cost work per photon. All
+ * geometry is double and relative to x. */
 #include "compensate.h"
 
 #include <float.h>
@@ -17,17 +17,35 @@
 
 #include "bsdf.h"
 #include "clip.h"
-#include "overlap.h"
 
 /* A polygon whose unit normal is this close to +-n is taken as lying in the
  * plane of x (1 - cos of about 1.4 milliradians). */
 #define PARALLEL_EPS 1e-6
 #define MAX_K (1 << 24)
-/* Polygons remembered per cube for the parallel-layer correction. */
-#define MAX_SEEN 32
-/* Parallel layers closer than this (relative to h) count as touching
- * (opposite normals) or as one plane (same normals). */
-#define CONTACT_REL 1e-3
+/* Sample points per polygon that something can hide: GRID x GRID cells of
+ * its bounding rectangle, those inside it. */
+#define GRID 8
+/* Two planes at most this far from perpendicular (|N_a . N_b| >= LAYER_COS)
+ * are layers: one over the other, not walls meeting at an edge. */
+#define LAYER_COS 0.5
+/* x' = x + XOFF_REL h n: the point just off x's surface that looks. */
+#define XOFF_REL 1e-3
+
+typedef struct cpoly {
+	uint32_t g;            /* scene polygon */
+	int obj, solid;
+	pm_dvec3 N, Ne;        /* unit normal; the side that counts (see .h) */
+	double d, de;          /* N . v and Ne . v on its plane, v relative to x */
+	double A;              /* area in the cube */
+	int v0, nv;            /* clipped vertices sc->cv[v0 ..] */
+	int ax;                /* axis N points most along (2-D inside test) */
+	int xon;               /* x lies on it */
+	int xpar;              /* parallel to n */
+	int r0, nr;            /* polygons that may hide part of it from x' */
+	int f0, nf;            /* polygons a backward ray from it may meet */
+	int s0, ns;            /* sample points */
+	double avis;           /* area seen from x' */
+} cpoly;
 
 struct pm_comp_scratch {
 	int k;
@@ -38,7 +56,20 @@ struct pm_comp_scratch {
 	int *act;              /* photons used that arrive in front of n */
 	pm_dvec3 *psi;         /* ... their unit directions */
 	double *c;             /* ... Psi . n */
-	double *ap;            /* ... target areas A_p */
+	int *own;              /* ... the polygon each lies on */
+	int *fx;               /* ... the fate of x's backward ray along Psi */
+	/* Grown as needed; a failed allocation leaves the estimate at 0. */
+	cpoly *g;
+	int ng, gcap;
+	pm_dvec3 *cv;
+	int ncv, cvcap;
+	int *bl;
+	int nbl, blcap;
+	pm_dvec3 *sp;          /* sample points */
+	double *sw;            /* their areas */
+	unsigned char *sv;     /* seen from x' */
+	int nsp, spcap;
+	int oom;
 	pm_comp_stats last;
 };
 
@@ -62,9 +93,10 @@ pm_comp_scratch_new(int k)
 	sc->act = malloc(n * sizeof *sc->act);
 	sc->psi = malloc(n * sizeof *sc->psi);
 	sc->c = malloc(n * sizeof *sc->c);
-	sc->ap = malloc(n * sizeof *sc->ap);
+	sc->own = malloc(n * sizeof *sc->own);
+	sc->fx = malloc(n * sizeof *sc->fx);
 	if (!sc->nn || !sc->pos || !sc->dir || !sc->w || !sc->d || !sc->act
-	    || !sc->psi || !sc->c || !sc->ap) {
+	    || !sc->psi || !sc->c || !sc->own || !sc->fx) {
 		pm_comp_scratch_free(sc);
 		return NULL;
 	}
@@ -84,7 +116,14 @@ pm_comp_scratch_free(pm_comp_scratch *sc)
 	free(sc->act);
 	free(sc->psi);
 	free(sc->c);
-	free(sc->ap);
+	free(sc->own);
+	free(sc->fx);
+	free(sc->g);
+	free(sc->cv);
+	free(sc->bl);
+	free(sc->sp);
+	free(sc->sw);
+	free(sc->sv);
 	free(sc);
 }
 
@@ -94,54 +133,81 @@ pm_comp_last(const pm_comp_scratch *sc)
 	return &sc->last;
 }
 
-/* What the polygon visitor needs: the cube, and the photons in front of n. */
-typedef struct visit_ctx {
-	const pm_polyindex *pi;
-	pm_dvec3 x, n;
-	double h, tau;
-	int open;
-	int na;
-	const pm_dvec3 *psi;
-	const double *c;
-	double *ap;
-	int polys;
-	int nseen;                 /* polygons with area in the cube ... */
-	uint32_t seen[MAX_SEEN];   /* ... their numbers */
-	pm_dvec3 seen_n[MAX_SEEN]; /* ... unit normals */
-	double seen_a[MAX_SEEN];   /* ... areas in the cube */
-	double seen_d[MAX_SEEN];   /* ... plane offsets N . v relative to x */
-	pm_dvec3 seen_m[MAX_SEEN]; /* ... a point of the clipped part */
-} visit_ctx;
-
-/* Polygon g's share of a photon's target area per unit of its area (the
- * factor of A_g in eq. 4), by the rules in compensate.h. */
-static double
-factor(const visit_ctx *q, int solid, pm_dvec3 N, int j)
+/* Room for need more elements of size sz in *p (capacity *cap, used n). */
+static int
+grow(void **p, int *cap, int n, int need, size_t sz)
 {
-	double sg = pm_ddot(N, q->n), t;
+	int c = *cap;
+	void *q;
 
-	if (fabs(sg) >= 1 - PARALLEL_EPS) {
-		t = sg > 0 ? q->c[j] : -q->c[j];
-		return solid ? fmax(0, t) : fabs(t);
-	}
-	t = pm_ddot(q->psi[j], N);
-	return solid ? fmax(0, t) : fabs(t);
+	if (n + need <= c)
+		return 1;
+	while (c < n + need)
+		c = c ? 2 * c : 64;
+	q = realloc(*p, (size_t)c * sz);
+	if (!q)
+		return 0;
+	*p = q;
+	*cap = c;
+	return 1;
 }
 
-/* Eq. 4 for one polygon g: clip it into the cube (A_g) and add A_g (Psi_p .
- * N_g) to the target area of every photon it faces. */
+static int
+grow_samples(pm_comp_scratch *sc, int need)
+{
+	int cap = sc->spcap;
+
+	if (!grow((void **)&sc->sp, &cap, sc->nsp, need, sizeof *sc->sp))
+		return 0;
+	cap = sc->spcap;
+	if (!grow((void **)&sc->sw, &cap, sc->nsp, need, sizeof *sc->sw))
+		return 0;
+	cap = sc->spcap;
+	if (!grow((void **)&sc->sv, &cap, sc->nsp, need, sizeof *sc->sv))
+		return 0;
+	sc->spcap = cap;
+	return 1;
+}
+
+static double
+comp(pm_dvec3 v, int a)
+{
+	return a == 0 ? v.x : a == 1 ? v.y : v.z;
+}
+
+/* Collects the polygons meeting the cube: clipped, with their areas. */
+typedef struct visit_ctx {
+	pm_comp_scratch *sc;
+	const pm_polyindex *pi;
+	pm_dvec3 x;
+	double h, tau;
+	int open;
+} visit_ctx;
+
 static void
 visit(void *vctx, uint32_t g)
 {
 	visit_ctx *q = vctx;
+	pm_comp_scratch *sc = q->sc;
 	const pm_scene *s = q->pi->s;
 	const pm_vec3 *verts = q->pi->verts;
 	double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
+	uint32_t n = s->poly_start[g + 1] - s->poly_start[g];
+	int cap = 2 * (int)n + 12, kept;
 	pm_clipper cl;
 	pm_dvec3 N;
-	double A, len, sg;
+	double A, len;
+	cpoly *P;
 
+	if (sc->oom)
+		return;
+	if (!grow((void **)&sc->cv, &sc->cvcap, sc->ncv, cap, sizeof *sc->cv) ||
+	    !grow((void **)&sc->g, &sc->gcap, sc->ng, 1, sizeof *sc->g)) {
+		sc->oom = 1;
+		return;
+	}
 	pm_clip_begin(&cl, q->h);
+	pm_clip_keep(&cl, sc->cv + sc->ncv, cap);
 	for (uint32_t v = s->poly_start[g]; v < s->poly_start[g + 1]; v++) {
 		pm_dvec3 r = pm_dsub(pm_dfromf(verts[s->poly_vert[v]]), q->x);
 		double rc[3] = {r.x, r.y, r.z};
@@ -163,244 +229,236 @@ visit(void *vctx, uint32_t g)
 		return;
 	N = pm_dscale(N, 1 / len);
 	A = pm_clip_end(&cl, N);
-	if (!(A > 0))
+	kept = pm_clip_kept(&cl);
+	if (!(A > 0) || kept < 3)
 		return;
-	q->polys++;
-	if (q->nseen < MAX_SEEN) {
-		q->seen[q->nseen] = g;
-		q->seen_a[q->nseen] = A;
-		q->seen_d[q->nseen] = pm_ddot(N, pm_dsub(pm_dfromf(verts[s->poly_vert[s->poly_start[g]]]), q->x));
-		q->seen_m[q->nseen] = pm_clip_middle(&cl);
-		q->seen_n[q->nseen++] = N;
-	}
-
-	int solid = s->objs[s->poly_obj[g]].solid;
-	sg = pm_ddot(N, q->n);
-	if (fabs(sg) >= 1 - PARALLEL_EPS) {
-		/* The plane of x: Psi.N_g is Psi.n up to sign, exactly. */
-		double sign = sg > 0 ? 1 : -1;
-		for (int j = 0; j < q->na; j++) {
-			double t = solid ? fmax(0, sign * q->c[j]) : q->c[j];
-			q->ap[j] += A * t;
-		}
-		return;
-	}
-	for (int j = 0; j < q->na; j++) {
-		double t = pm_ddot(q->psi[j], N);
-		q->ap[j] += A * (solid ? fmax(0, t) : fabs(t));
-	}
+	P = &sc->g[sc->ng++];
+	*P = (cpoly){0};
+	P->g = g;
+	P->obj = (int)s->poly_obj[g];
+	P->solid = s->objs[P->obj].solid;
+	P->N = N;
+	P->A = A;
+	P->v0 = sc->ncv;
+	P->nv = kept;
+	sc->ncv += kept;
+	P->d = pm_ddot(N, pm_clip_middle(&cl));
+	P->ax = fabs(N.x) > fabs(N.y) ? (fabs(N.x) > fabs(N.z) ? 0 : 2) : (fabs(N.y) > fabs(N.z) ? 1 : 2);
 }
 
-/* Polygon g clipped into the cube, relative to x; 0 vertices if it is too
- * large to clip here or not convex (then no correction is made for it). */
+/* 1 if point p (near P's plane) is inside P's clipped polygon; within tol
+ * of its boundary, edge_in. Crossing number in the coordinate plane P
+ * projects best to. */
 static int
-clipped(const visit_ctx *q, uint32_t g, pm_dvec3 N, pm_dvec3 *out)
+inside(const pm_comp_scratch *sc, const cpoly *P, pm_dvec3 p, double tol, int edge_in)
 {
-	const pm_scene *s = q->pi->s;
-	pm_dvec3 v[64];
-	int n = (int)(s->poly_start[g + 1] - s->poly_start[g]);
+	const pm_dvec3 *v = sc->cv + P->v0;
+	int u = (P->ax + 1) % 3, w = (P->ax + 2) % 3, in = 0;
+	double pu = comp(p, u), pw = comp(p, w);
 
-	if (n > 64)
-		return 0;
-	for (int i = 0; i < n; i++)
-		v[i] = pm_dsub(pm_dfromf(q->pi->verts[s->poly_vert[s->poly_start[g] + (uint32_t)i]]), q->x);
-	if (!pm_poly_convex(v, n, N))
-		return 0;
-	return pm_clip_poly(v, n, q->h, out);
-}
-
-/* The paper's eq. 4 assumes the front-facing polygons in the cube do not
- * overlap in a photon's projection. Parallel layers do (a picture in front
- * of a wall, a rug on a floor, a box resting on a table): light reaching the
- * back layer's covered part has to pass through the front one, so that part
- * is taken out of A_p (overlap.h). Layers with opposite normals that touch
- * seal the area between them off from every direction. */
-static void
-hide_overlaps(visit_ctx *q)
-{
-	const pm_scene *s = q->pi->s;
-	pm_dvec3 va[64 + 6], vb[64 + 6], scratch[2 * (64 + 6) * 2 + 8];
-
-	for (int a = 0; a < q->nseen; a++)
-		for (int b = a + 1; b < q->nseen; b++) {
-			pm_dvec3 Na = q->seen_n[a], Nb = q->seen_n[b];
-			double cs = pm_ddot(Na, Nb), gap, oa, ob;
-			int sa = s->objs[s->poly_obj[q->seen[a]]].solid;
-			int sb = s->objs[s->poly_obj[q->seen[b]]].solid;
-			int na, nb;
-			if (fabs(cs) < 1 - PARALLEL_EPS)
-				continue;
-			na = clipped(q, q->seen[a], Na, va);
-			nb = clipped(q, q->seen[b], Nb, vb);
-			if (na < 3 || nb < 3)
-				continue;
-			oa = pm_ddot(va[0], Na);
-			ob = pm_ddot(vb[0], Na);
-			gap = ob - oa;             /* b's plane relative to a's, along Na */
-			if (cs < 0) {
-				/* Opposite normals: touching faces of two objects. */
-				if (fabs(gap) > CONTACT_REL * q->h)
-					continue;
-				double O = pm_overlap_area(va, na, vb, nb, Nb, Nb, scratch);
-				if (!(O > 0))
-					continue;
-				for (int j = 0; j < q->na; j++)
-					q->ap[j] -= O * (factor(q, sa, Na, j) + factor(q, sb, Nb, j));
-				continue;
-			}
-			/* Same normals: for each photon, the layer nearer to where it
-			 * comes from hides part of the other. Nearly coplanar layers
-			 * hide the same area for every direction. */
-			double O0 = fabs(gap) <= CONTACT_REL * q->h ?
-				pm_overlap_area(va, na, vb, nb, Nb, Nb, scratch) : -1;
-			if (O0 == 0)
-				continue;
-			for (int j = 0; j < q->na; j++) {
-				double fa = factor(q, sa, Na, j), fb = factor(q, sb, Nb, j);
-				double dn = pm_ddot(q->psi[j], Na), O;
-				int a_front;
-				if (!(fa > 0) || !(fb > 0))
-					continue;
-				a_front = dn > 0 ? gap < 0 : gap > 0;
-				if (O0 >= 0)
-					O = O0;
-				else if (a_front)
-					O = pm_overlap_area(va, na, vb, nb, Nb, q->psi[j], scratch);
-				else
-					O = pm_overlap_area(vb, nb, va, na, Na, q->psi[j], scratch);
-				q->ap[j] -= O * (a_front ? fb : fa);
-			}
-		}
-	for (int j = 0; j < q->na; j++)
-		if (q->ap[j] < 0)
-			q->ap[j] = 0;
-}
-
-/* 1 if point p (in polygon g's plane, relative to x) is inside polygon g by
- * more than eps: crossing number in the coordinate plane the polygon
- * projects best to. Points within eps of an edge count as edge_in says. */
-static int
-inside(const visit_ctx *q, uint32_t g, pm_dvec3 N, pm_dvec3 p, double eps, int edge_in)
-{
-	const pm_scene *s = q->pi->s;
-	int ax = fabs(N.x) > fabs(N.y) ? (fabs(N.x) > fabs(N.z) ? 0 : 2) : (fabs(N.y) > fabs(N.z) ? 1 : 2);
-	int u = (ax + 1) % 3, v = (ax + 2) % 3, in = 0;
-	double P[3] = {p.x, p.y, p.z};
-	uint32_t a = s->poly_start[g], n = s->poly_start[g + 1] - a;
-
-	for (uint32_t i = 0, j = n - 1; i < n; j = i++) {
-		pm_dvec3 vi = pm_dsub(pm_dfromf(q->pi->verts[s->poly_vert[a + i]]), q->x);
-		pm_dvec3 vj = pm_dsub(pm_dfromf(q->pi->verts[s->poly_vert[a + j]]), q->x);
-		pm_dvec3 e = pm_dsub(vi, vj), r = pm_dsub(p, vj);
-		double I[3] = {vi.x, vi.y, vi.z}, J[3] = {vj.x, vj.y, vj.z};
+	for (int i = 0, j = P->nv - 1; i < P->nv; j = i++) {
+		pm_dvec3 e = pm_dsub(v[i], v[j]), r = pm_dsub(p, v[j]);
 		double ee = pm_ddot(e, e), t = ee > 0 ? fmin(1, fmax(0, pm_ddot(r, e) / ee)) : 0;
 		pm_dvec3 off = pm_dsub(r, pm_dscale(e, t));
-		if (pm_ddot(off, off) <= eps * eps)
+		double iu = comp(v[i], u), iw = comp(v[i], w), ju = comp(v[j], u), jw = comp(v[j], w);
+		if (pm_ddot(off, off) <= tol * tol)
 			return edge_in;
-		if ((I[v] > P[v]) != (J[v] > P[v]) &&
-		    P[u] < (J[u] - I[u]) * (P[v] - I[v]) / (J[v] - I[v]) + I[u])
+		if ((iw > pw) != (jw > pw) && pu < (ju - iu) * (pw - iw) / (jw - iw) + iu)
 			in = !in;
 	}
 	return in;
 }
 
-/* g's plane offset of point r (relative to x): > 0 on g's front side. */
-static inline double
-side(const visit_ctx *q, int gi, pm_dvec3 r)
-{
-	return pm_ddot(q->seen_n[gi], r) - q->seen_d[gi];
-}
-
-/* 1 if the segment from x to r crosses a polygon of the cube other than
- * those holding x or r. Crossing points within eps of an edge count: a
- * wall's edge is where it meets the next wall, and a segment along that
- * wall passes through it there. */
+/* 1 if x' sees y: the segment between them crosses none of the polygons
+ * that may hide part of P (y on P). Crossings within eps of a polygon's edge
+ * count: a wall's edge is where it meets the floor, and the floor beyond
+ * runs under it. */
 static int
-crosses(const visit_ctx *q, pm_dvec3 r, double eps)
+seen(const pm_comp_scratch *sc, const cpoly *P, pm_dvec3 xo, pm_dvec3 y, double eps)
 {
-	for (int gi = 0; gi < q->nseen; gi++) {
-		double sx = side(q, gi, pm_dv3(0, 0, 0)), sr = side(q, gi, r);
-		if (fabs(sx) <= eps || fabs(sr) <= eps || (sx > 0) == (sr > 0))
+	for (int i = 0; i < P->nr; i++) {
+		const cpoly *B = &sc->g[sc->bl[P->r0 + i]];
+		double sx = pm_ddot(B->N, xo) - B->d, sy = pm_ddot(B->N, y) - B->d;
+		if (fabs(sx) <= eps || fabs(sy) <= eps || (sx > 0) == (sy > 0))
 			continue;
-		if (inside(q, q->seen[gi], q->seen_n[gi], pm_dscale(r, sx / (sx - sr)), eps, 1))
-			return 1;
+		if (inside(sc, B, pm_dadd(xo, pm_dscale(pm_dsub(y, xo), sx / (sx - sy))), eps, 1))
+			return 0;
 	}
-	return 0;
+	return 1;
 }
 
-/* What x cannot see of the cube does not share x's light: photons and
- * target area behind a thin wall, under a rug, behind a picture, on the far
- * face of a thin solid. Eq. 4 spreads each photon over all the cube's
- * geometry facing it, which is right only for geometry lit by the same
- * field as x. So:
- *  - a photon is left out (w = 0) if the segment from x to it crosses
- *    another polygon of the cube; or if it lies on a two-sided sheet,
- *    having arrived on the side away from x; or if it lies right behind
- *    x's own surface (its foot point on the plane of x inside a polygon
- *    holding x);
- *  - a polygon whose middle x cannot see (the segment crosses another
- *    polygon) is no target area: its area leaves every A_p.
- * Photons and faces meeting x's surface at an edge, concave or convex, are
- * seen (the segment runs through free space or through the solid's inside
- * without crossing another face) and count, as the paper intends.
- * unseen_area runs before the weights, unseen_photons after; the latter
- * returns the number of photons left out. */
+/* The fate of the backward ray from y toward psi through the cube: -1 if it
+ * meets none of the polygons cand[0..nc-1] (it leaves the cube or meets a
+ * wall across an edge), else which object it meets first and from which
+ * side. A hit at distance 0 (a face resting on y's surface) counts; a hit
+ * within eps of the polygon's edge does not (the next polygon of a mesh). */
+static int
+fate(const pm_comp_scratch *sc, const int *cand, int nc, pm_dvec3 y, pm_dvec3 psi, double eps)
+{
+	double best = INFINITY;
+	int f = -1;
+
+	for (int i = 0; i < nc; i++) {
+		const cpoly *B = &sc->g[cand[i]];
+		double dn = pm_ddot(B->N, psi), gap = B->d - pm_ddot(B->N, y), t;
+		if (fabs(dn) < 1e-9)
+			continue;
+		t = gap / dn;
+		if (t < 0) {
+			if (fabs(gap) > eps)
+				continue;
+			t = 0;
+		}
+		if (t >= best || !inside(sc, B, pm_dadd(y, pm_dscale(psi, t)), eps, 0))
+			continue;
+		best = t;
+		f = 2 * B->obj + (dn > 0);
+	}
+	return f;
+}
+
+/* Signed distances of Q's clipped vertices to the plane (M, m): the largest
+ * and the smallest. */
 static void
-unseen_area(visit_ctx *q, double eps)
+span(const pm_comp_scratch *sc, const cpoly *Q, pm_dvec3 M, double m, double *lo, double *hi)
 {
-	const pm_scene *s = q->pi->s;
-
-	for (int gi = 0; gi < q->nseen; gi++) {
-		if (fabs(q->seen_d[gi]) <= eps || !crosses(q, q->seen_m[gi], eps))
-			continue;
-		for (int j = 0; j < q->na; j++)
-			q->ap[j] -= q->seen_a[gi] *
-				factor(q, s->objs[s->poly_obj[q->seen[gi]]].solid, q->seen_n[gi], j);
+	*lo = INFINITY;
+	*hi = -INFINITY;
+	for (int i = 0; i < Q->nv; i++) {
+		double s = pm_ddot(M, sc->cv[Q->v0 + i]) - m;
+		*lo = fmin(*lo, s);
+		*hi = fmax(*hi, s);
 	}
-	for (int j = 0; j < q->na; j++)
-		if (q->ap[j] < 0)
-			q->ap[j] = 0;
 }
 
+/* For each polygon: which others may hide part of it from x' (R list), and
+ * which a backward ray from it may meet so that its fate differs from the
+ * open one (F list): layers over it (|N_b . N| >= LAYER_COS) with some part
+ * in front of it or lying on it facing it; solids it lies partly behind.
+ * Then the same F list for x itself (index ng). */
 static int
-unseen_photons(const visit_ctx *q, const pm_vec3 *pos, const int *act, double *w, double eps)
+pair_lists(pm_comp_scratch *sc, pm_dvec3 xo, pm_dvec3 n, double eps, int *xf0, int *nxf)
 {
-	const pm_scene *s = q->pi->s;
-	int hidden = 0;
+	int ng = sc->ng;
 
-	for (int j = 0; j < q->na; j++) {
-		int i = act[j], out = 0;
-		pm_dvec3 r = pm_dsub(pm_dfromf(pos[i]), q->x);
-		if (!(w[i] > 0))
-			continue;
-		out = crosses(q, r, eps);
-		for (int gi = 0; gi < q->nseen && !out; gi++) {
-			uint32_t g = q->seen[gi];
-			pm_dvec3 N = q->seen_n[gi];
-			double sx = side(q, gi, pm_dv3(0, 0, 0)), sr = side(q, gi, r);
-			pm_dvec3 foot;
-			if (fabs(sx) <= eps) {
-				/* g holds x: is the photon right behind it? */
-				if (fabs(pm_ddot(N, q->n)) < 1 - PARALLEL_EPS || pm_ddot(q->n, r) >= -eps)
-					continue;
-				/* A foot point on an edge of a solid's face is a
-				 * photon on the face below a convex edge: it stays.
-				 * A sheet has no faces below its edges: there the
-				 * photon is on the far side of a thin wall. */
-				foot = pm_dsub(r, pm_dscale(N, sr));
-				out = inside(q, g, N, foot, eps, !s->objs[s->poly_obj[g]].solid);
-			} else if (fabs(sr) <= eps && !s->objs[s->poly_obj[g]].solid &&
-			           (pm_ddot(q->psi[j], N) > 0) != (sx > 0)) {
-				/* On a sheet, lit on the side away from x. */
-				out = inside(q, g, N, pm_dsub(r, pm_dscale(N, sr)), eps, 1);
+	sc->nbl = 0;
+	if (!grow((void **)&sc->bl, &sc->blcap, 0, 2 * ng * ng + ng + 1, sizeof *sc->bl))
+		return 0;
+	for (int a = 0; a < ng; a++) {
+		cpoly *P = &sc->g[a];
+		P->r0 = sc->nbl;
+		for (int b = 0; b < ng; b++) {
+			const cpoly *B = &sc->g[b];
+			double sx = pm_ddot(B->N, xo) - B->d, lo, hi;
+			if (b == a || fabs(sx) <= eps)
+				continue;
+			/* Through its own solid, x sees the faces across a convex
+			 * edge. */
+			if (B->xon && B->solid && B->obj == P->obj)
+				continue;
+			span(sc, P, B->N, B->d, &lo, &hi);
+			if (sx > 0 ? lo < -eps : hi > eps)
+				sc->bl[sc->nbl++] = b;
+		}
+		P->nr = sc->nbl - P->r0;
+		P->f0 = sc->nbl;
+		for (int b = 0; b < ng; b++) {
+			const cpoly *B = &sc->g[b];
+			double lo, hi, plo, phi;
+			int layer = fabs(pm_ddot(B->N, P->N)) >= LAYER_COS, cand = 0;
+			if (b == a)
+				continue;
+			span(sc, B, P->Ne, P->de, &lo, &hi);
+			if (layer && hi > eps)
+				cand = 1;
+			else if (layer && lo >= -eps)
+				/* On P's plane: resting on it facing it, or the same
+				 * surface twice (the lower polygon number wins). */
+				cand = pm_ddot(B->Ne, P->Ne) < 0 || B->g < P->g;
+			else if (B->solid && hi > eps) {
+				span(sc, P, B->N, B->d, &plo, &phi);
+				cand = plo < -eps;
 			}
+			if (cand)
+				sc->bl[sc->nbl++] = b;
 		}
-		if (out) {
-			w[i] = 0;
-			hidden++;
-		}
+		P->nf = sc->nbl - P->f0;
 	}
-	return hidden;
+	*xf0 = sc->nbl;
+	for (int b = 0; b < ng; b++) {
+		const cpoly *B = &sc->g[b];
+		double lo, hi;
+		if (B->xon)
+			continue;
+		span(sc, B, n, 0, &lo, &hi);
+		if (!(hi > eps))
+			continue;
+		if (fabs(pm_ddot(B->N, n)) >= LAYER_COS || (B->solid && B->d > eps))
+			sc->bl[sc->nbl++] = b;
+	}
+	*nxf = sc->nbl - *xf0;
+	return 1;
+}
+
+/* Sample points of P: the centres of the GRID x GRID cells of its bounding
+ * rectangle that lie inside it, each carrying an equal share of its area;
+ * and which of them x' sees. */
+static int
+sample(pm_comp_scratch *sc, cpoly *P, pm_dvec3 xo, double eps)
+{
+	pm_dvec3 t1, t2, base;
+	double lo1 = INFINITY, hi1 = -INFINITY, lo2 = INFINITY, hi2 = -INFINITY;
+	int kept = 0;
+
+	if (!grow_samples(sc, GRID * GRID))
+		return 0;
+	t1 = fabs(P->N.x) < 0.9 ? pm_dv3(1, 0, 0) : pm_dv3(0, 1, 0);
+	t1 = pm_dsub(t1, pm_dscale(P->N, pm_ddot(t1, P->N)));
+	t1 = pm_dscale(t1, 1 / pm_dlen(t1));
+	t2 = pm_dcross(P->N, t1);
+	for (int i = 0; i < P->nv; i++) {
+		double a = pm_ddot(sc->cv[P->v0 + i], t1), b = pm_ddot(sc->cv[P->v0 + i], t2);
+		lo1 = fmin(lo1, a);
+		hi1 = fmax(hi1, a);
+		lo2 = fmin(lo2, b);
+		hi2 = fmax(hi2, b);
+	}
+	base = pm_dscale(P->N, P->d);
+	P->s0 = sc->nsp;
+	for (int i = 0; i < GRID; i++)
+		for (int j = 0; j < GRID; j++) {
+			double a = lo1 + (hi1 - lo1) * (i + 0.5) / GRID;
+			double b = lo2 + (hi2 - lo2) * (j + 0.5) / GRID;
+			pm_dvec3 p = pm_dadd(base, pm_dadd(pm_dscale(t1, a), pm_dscale(t2, b)));
+			if (inside(sc, P, p, 0, 1))
+				sc->sp[P->s0 + kept++] = p;
+		}
+	if (kept == 0) {
+		pm_dvec3 m = pm_dv3(0, 0, 0);
+		for (int i = 0; i < P->nv; i++)
+			m = pm_dadd(m, sc->cv[P->v0 + i]);
+		sc->sp[P->s0 + kept++] = pm_dscale(m, 1.0 / P->nv);
+	}
+	P->ns = kept;
+	sc->nsp += kept;
+	P->avis = 0;
+	for (int i = P->s0; i < P->s0 + kept; i++) {
+		sc->sw[i] = P->A / kept;
+		sc->sv[i] = (unsigned char)seen(sc, P, xo, sc->sp[i], eps);
+		if (sc->sv[i])
+			P->avis += sc->sw[i];
+	}
+	return 1;
+}
+
+/* Psi . Ne for P, with Psi . n in its place on x's plane so that the cosine
+ * cancels exactly against (Psi . n) in eq. 2. */
+static double
+facing(const cpoly *P, pm_dvec3 psi, double c, pm_dvec3 n)
+{
+	if (P->xpar)
+		return pm_ddot(P->Ne, n) > 0 ? c : 0;
+	return fmax(0, pm_ddot(psi, P->Ne));
 }
 
 void
@@ -411,9 +469,9 @@ pm_comp_weights(const pm_polyindex *pi, pm_vec3 x, pm_vec3 n,
 {
 	pm_comp_stats z = {0};
 	visit_ctx q = {0};
-	pm_dvec3 xd = pm_dfromf(x), nd = pm_dfromf(n);
-	double hk = 0, hs, tau, len = pm_dlen(nd);
-	int valid = 0, inner = 0, na = 0;
+	pm_dvec3 xd = pm_dfromf(x), nd = pm_dfromf(n), xo;
+	double hk = 0, hs, h, tau, len = pm_dlen(nd), eps, mx;
+	int valid = 0, inner = 0, na = 0, xf0 = 0, nxf = 0;
 
 	if (m > sc->k)
 		m = sc->k;
@@ -457,13 +515,13 @@ pm_comp_weights(const pm_polyindex *pi, pm_vec3 x, pm_vec3 n,
 	}
 	if (complete || inner == 0) {
 		z.closed = 1;
-		q.h = fmax(hk + tau, PM_COMP_HMIN_REL * pi->extent);
+		h = fmax(hk + tau, PM_COMP_HMIN_REL * pi->extent);
 	} else {
-		q.h = hs;
+		h = hs;
 		z.shell = valid - inner;
 	}
-	z.h = q.h;
-	if (!(q.h > 0) || !isfinite(q.h))
+	z.h = h;
+	if (!(h > 0) || !isfinite(h))
 		goto out;
 
 	/* Photons used that arrive in front of n; the others add nothing. */
@@ -481,44 +539,105 @@ pm_comp_weights(const pm_polyindex *pi, pm_vec3 x, pm_vec3 n,
 		sc->act[na] = i;
 		sc->psi[na] = p;
 		sc->c[na] = c;
-		sc->ap[na] = 0;
 		na++;
 	}
 	z.front = na;
 	if (na == 0)
 		goto out;
 
+	/* The polygons in the cube. */
+	sc->ng = sc->ncv = sc->nsp = sc->nbl = 0;
+	sc->oom = 0;
+	q.sc = sc;
 	q.pi = pi;
 	q.x = xd;
-	q.n = nd;
+	q.h = h;
 	q.tau = tau;
 	q.open = !z.closed;
-	q.na = na;
-	q.psi = sc->psi;
-	q.c = sc->c;
-	q.ap = sc->ap;
-	pm_polyindex_cube(pi, xd, q.h, visit, &q);
-	z.polys = q.polys;
+	pm_polyindex_cube(pi, xd, h, visit, &q);
+	z.polys = sc->ng;
+	if (sc->oom)
+		goto out;
 	/* Beyond float rounding of the vertices, which grows with |x|. */
-	double mx = fmax(fabs(xd.x), fmax(fabs(xd.y), fabs(xd.z)));
-	double eps = 1e-4 * q.h + 8 * FLT_EPSILON * mx;
-	if (q.nseen > 1) {
-		hide_overlaps(&q);
-		unseen_area(&q, eps);
+	mx = fmax(fabs(xd.x), fmax(fabs(xd.y), fabs(xd.z)));
+	eps = 1e-4 * h + 8 * FLT_EPSILON * mx;
+	xo = pm_dscale(nd, fmax(XOFF_REL * h, 4 * eps));
+
+	for (int a = 0; a < sc->ng; a++) {
+		cpoly *P = &sc->g[a];
+		double sxo = pm_ddot(P->N, xo) - P->d;
+		P->Ne = P->solid || sxo >= 0 ? P->N : pm_dscale(P->N, -1);
+		P->de = pm_ddot(P->Ne, P->N) * P->d;
+		P->xon = fabs(P->d) <= eps && inside(sc, P, pm_dv3(0, 0, 0), eps, 1);
+		P->xpar = fabs(pm_ddot(P->N, nd)) >= 1 - PARALLEL_EPS && fabs(P->d) <= eps;
+		P->avis = P->A;
+	}
+	if (sc->ng > 1) {
+		if (!pair_lists(sc, xo, nd, eps, &xf0, &nxf))
+			goto out;
+		for (int a = 0; a < sc->ng; a++)
+			if ((sc->g[a].nr > 0 || sc->g[a].nf > 0) && !sample(sc, &sc->g[a], xo, eps))
+				goto out;
 	}
 
-	/* Eq. 2 and 3: Phi_p / A_p (Psi_p . N). A photon with no front-facing
-	 * area cannot be spread: skip it. The threshold scales with Psi . n so
-	 * that grazing photons on the plane of x (A_p ~ A_g (Psi . n)) pass. */
-	double thr = PM_COMP_SKIP_REL * 4 * q.h * q.h;
+	/* Which photons count: each lies on a polygon of the cube, on the side
+	 * that faces its light and x', where x' sees it, and its backward ray
+	 * meets what x's does. */
 	for (int j = 0; j < na; j++) {
-		if (sc->ap[j] > thr * sc->c[j])
-			w[sc->act[j]] = sc->c[j] / sc->ap[j];
+		int i = sc->act[j], own = -1, fy;
+		pm_dvec3 r = pm_dsub(pm_dfromf(pos[i]), xd), psi = sc->psi[j];
+		sc->own[j] = -1;
+		for (int a = 0; a < sc->ng && own < 0; a++) {
+			const cpoly *P = &sc->g[a];
+			if (fabs(pm_ddot(P->N, r) - P->d) <= eps && pm_ddot(psi, P->Ne) > 0 &&
+			    inside(sc, P, r, eps, 1))
+				own = a;
+		}
+		if (own < 0) {
+			z.hidden++;
+			continue;
+		}
+		const cpoly *P = &sc->g[own];
+		sc->fx[j] = fate(sc, sc->bl + xf0, nxf, pm_dv3(0, 0, 0), psi, eps);
+		fy = fate(sc, sc->bl + P->f0, P->nf, r, psi, eps);
+		if (fy != sc->fx[j] || (P->nr > 0 && !seen(sc, P, xo, r, eps))) {
+			z.hidden++;
+			continue;
+		}
+		sc->own[j] = own;
+	}
+
+	/* Eq. 4 over what counts, eq. 2 and 3: Phi_p / A_p (Psi_p . N). */
+	double thr = PM_COMP_SKIP_REL * 4 * h * h;
+	for (int j = 0; j < na; j++) {
+		int own = sc->own[j];
+		double A = 0, c = sc->c[j];
+		pm_dvec3 psi = sc->psi[j];
+		if (own < 0)
+			continue;
+		for (int a = 0; a < sc->ng; a++) {
+			const cpoly *P = &sc->g[a];
+			double f = facing(P, psi, c, nd), s = 0;
+			if (!(f > 0))
+				continue;
+			if (P->nf == 0) {
+				if (sc->fx[j] < 0)
+					A += f * P->avis;
+				continue;
+			}
+			for (int t = P->s0; t < P->s0 + P->ns; t++)
+				if (sc->sv[t] && fate(sc, sc->bl + P->f0, P->nf, sc->sp[t], psi, eps) == sc->fx[j])
+					s += sc->sw[t];
+			A += f * s;
+		}
+		/* The photon's own spot is exposed: never less than its cell. */
+		const cpoly *O = &sc->g[own];
+		A = fmax(A, facing(O, psi, c, nd) * O->A / (GRID * GRID));
+		if (A > thr * c)
+			w[sc->act[j]] = c / A;
 		else
 			z.skipped++;
 	}
-	if (q.nseen > 1)
-		z.hidden = unseen_photons(&q, pos, sc->act, w, eps);
 out:
 	if (st)
 		*st = z;

@@ -22,11 +22,29 @@ typedef struct pm_estimate_info {
 	int nphotons;       /* photons found */
 } pm_estimate_info;
 
+/* Normalisation of the classical estimate (see pm_estimate_classical_norm). */
+enum pm_classical_norm {
+	PM_NORM_K,          /* Jensen's: the k photons' flux over pi r^2 */
+	PM_NORM_K1,         /* the same times (k-1)/k: unbiased for a flat, uniform density */
+};
+
 /* Classical: the k nearest in a sphere (L2) of radius r; L = sum over photons
- * arriving in front of n of f_r * flux / (pi r^2). nn holds >= k entries. */
+ * arriving in front of n of f_r * flux / (pi r^2). nn holds >= k entries.
+ * This is pm_estimate_classical_norm with PM_NORM_K. */
 pm_vec3 pm_estimate_classical(const pm_photons *map, pm_vec3 x, pm_vec3 n,
                               pm_vec3 wo, const pm_material *m, int k,
                               pm_nn *nn, pm_estimate_info *info);
+
+/* The classical estimate with a choice of normalisation (enum
+ * pm_classical_norm). With PM_NORM_K1 the sum is scaled by (got-1)/got, got
+ * the photons found (k unless the map holds fewer), so one photon gives 0. */
+pm_vec3 pm_estimate_classical_norm(const pm_photons *map, pm_vec3 x, pm_vec3 n,
+                                   pm_vec3 wo, const pm_material *m, int k,
+                                   int norm, pm_nn *nn, pm_estimate_info *info);
+
+const char *pm_classical_norm_name(int norm);
+/* Returns the normalisation for a name ("k" or "k-1"), or -1. */
+int pm_classical_norm_parse(const char *name);
 
 /* The compensated estimate needs the photon-surface polygons near x: an
  * index over the scene's diffuse and soft-glossy polygons at one shutter time. */

@@ -171,7 +171,8 @@ trace(const ctx *c, scratch *sc, pm_vec3 o, pm_vec3 d, pm_rng *r, sample *out)
 			if (c->o->estimator == PM_EST_COMPENSATED)
 				L = pm_estimate_compensated(c->pi, c->map, h.p, n, wo, m, c->o->k, sc->comp, &info);
 			else
-				L = pm_estimate_classical(c->map, h.p, n, wo, m, c->o->k, sc->nn, &info);
+				L = pm_estimate_classical_norm(c->map, h.p, n, wo, m, c->o->k,
+				                               c->o->classical_norm, sc->nn, &info);
 			*bucket = pm_add(*bucket, pm_mul(beta, L));
 			if (depth == 0) {
 				out->size = info.size;
@@ -304,6 +305,8 @@ pm_render(const pm_scene *s, const pm_accel *a, const pm_lights *L,
 		return pm_seterr(err, "the %s estimate needs a photon map", pm_estimator_name(o->estimator));
 	if (o->estimator == PM_EST_COMPENSATED && !pi)
 		return pm_seterr(err, "the compensated estimate needs a polygon index");
+	if (o->classical_norm != PM_NORM_K && o->classical_norm != PM_NORM_K1)
+		return pm_seterr(err, "unknown classical normalisation %d", o->classical_norm);
 	if (pm_camera_init(&cam, &s->camera, err) != 0)
 		return pm_preferr(err, "%s", s->path);
 	W = cam.width;

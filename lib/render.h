@@ -26,6 +26,8 @@ enum pm_estimator { PM_EST_CLASSICAL, PM_EST_COMPENSATED, PM_EST_PATH, PM_EST_PH
 typedef struct pm_render_opts {
 	int estimator;      /* enum pm_estimator */
 	int k;              /* nearest photons per estimate */
+	int classical_norm; /* enum pm_classical_norm, for PM_EST_CLASSICAL; 0 is
+	                     * Jensen's k / (pi r^2) */
 	int spp;            /* camera samples per pixel */
 	uint64_t seed;
 	int max_depth;      /* longest camera path; 0 means 64 */
