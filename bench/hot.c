@@ -25,6 +25,7 @@
 #include "accel.h"
 #include "bsdf.h"
 #include "camera.h"
+#include "compensate.h"
 #include "estimate.h"
 #include "kdtree.h"
 #include "light.h"
@@ -255,6 +256,7 @@ main(int argc, char **argv)
 	pm_nn *nn = malloc((size_t)k * sizeof *nn);
 	pm_comp_scratch *sc = pm_comp_scratch_new(k);
 	double tc[99], tq[99];
+	long multi = 0, sampled = 0, npolys = 0;
 	if (!nn || !sc)
 		die(path, "out of memory");
 	for (int i = 0; i < runs; i++) {
@@ -268,6 +270,15 @@ main(int argc, char **argv)
 		for (long j = 0; j < ne; j++)
 			sink += pm_estimate_compensated(pi, &ph, hx[j], hn[j], hw[j], hm[j], k, sc, &info).x;
 		tc[i] = now() - t;
+		if (i == 0)
+			for (long j = 0; j < ne; j++) {
+				const pm_comp_stats *cs;
+				sink += pm_estimate_compensated(pi, &ph, hx[j], hn[j], hw[j], hm[j], k, sc, &info).x;
+				cs = pm_comp_last(sc);
+				multi += cs->polys > 1;
+				sampled += cs->sampled > 0;
+				npolys += cs->polys;
+			}
 		t = now();
 		for (long j = 0; j < ne; j++) {
 			float q[3] = {hx[j].x, hx[j].y, hx[j].z};
@@ -288,6 +299,10 @@ main(int argc, char **argv)
 	       "us_compensated_search\t%.3f\n", ucl, usq, uco, ucq);
 	fprintf(stderr, "checksum %g\n", sink);
 	printf("compensated_over_classical\t%.3f\n", uco / ucl);
+	/* How often the cube holds more than one polygon, and how often one of
+	 * them can hide part of another (sample points needed). */
+	printf("comp_multi_polygon\t%.4f\ncomp_sampled\t%.4f\ncomp_mean_polygons\t%.2f\n",
+	       (double)multi / ne, (double)sampled / ne, (double)npolys / ne);
 
 	pm_comp_scratch_free(sc);
 	free(nn);

@@ -30,6 +30,10 @@
 #define LAYER_COS 0.5
 /* x' = x + XOFF_REL h n: the point just off x's surface that looks. */
 #define XOFF_REL 1e-3
+/* In a polygon's list of what its backward rays may meet: a solid that is
+ * no layer over it, which matters only when met from behind. */
+#define MATTER (1 << 30)
+#define IDX(e) ((e) & (MATTER - 1))
 
 typedef struct cpoly {
 	uint32_t g;            /* scene polygon */
@@ -37,14 +41,20 @@ typedef struct cpoly {
 	pm_dvec3 N, Ne;        /* unit normal; the side that counts (see .h) */
 	double d, de;          /* N . v and Ne . v on its plane, v relative to x */
 	double A;              /* area in the cube */
-	int v0, nv;            /* clipped vertices sc->cv[v0 ..] */
+	int v0, nv;            /* clipped vertices sc->cv[v0 ..], sc->uv[2 v0 ..] */
 	int ax;                /* axis N points most along (2-D inside test) */
+	double nax;            /* |N| along it */
+	double lo[3], hi[3];   /* bounding box of the clipped polygon */
 	int xon;               /* x lies on it */
 	int xpar;              /* parallel to n */
 	int r0, nr;            /* polygons that may hide part of it from x' */
-	int f0, nf;            /* polygons a backward ray from it may meet */
+	int f0, nf;            /* polygons a backward ray from it may meet ... */
+	int nfc;               /* ... the first nfc lying on its plane */
 	int s0, ns;            /* sample points */
-	double avis;           /* area seen from x' */
+	double avis;           /* area seen from x' ... */
+	double aopen;          /* ... of it, not covered by a polygon on its plane */
+	int ndyn;              /* samples whose fate depends on the direction */
+	double adyn;           /* ... their area seen from x' */
 } cpoly;
 
 struct pm_comp_scratch {
@@ -63,11 +73,15 @@ struct pm_comp_scratch {
 	int ng, gcap;
 	pm_dvec3 *cv;
 	int ncv, cvcap;
+	double *uv;            /* the clipped vertices in the plane across ax */
+	int uvcap;
 	int *bl;
 	int nbl, blcap;
 	pm_dvec3 *sp;          /* sample points */
 	double *sw;            /* their areas */
 	unsigned char *sv;     /* seen from x' */
+	int *sf;               /* fate for every direction (covered), -1 (open
+	                          for every direction) or -2 (depends on it) */
 	int nsp, spcap;
 	int oom;
 	pm_comp_stats last;
@@ -120,10 +134,12 @@ pm_comp_scratch_free(pm_comp_scratch *sc)
 	free(sc->fx);
 	free(sc->g);
 	free(sc->cv);
+	free(sc->uv);
 	free(sc->bl);
 	free(sc->sp);
 	free(sc->sw);
 	free(sc->sv);
+	free(sc->sf);
 	free(sc);
 }
 
@@ -165,6 +181,9 @@ grow_samples(pm_comp_scratch *sc, int need)
 	cap = sc->spcap;
 	if (!grow((void **)&sc->sv, &cap, sc->nsp, need, sizeof *sc->sv))
 		return 0;
+	cap = sc->spcap;
+	if (!grow((void **)&sc->sf, &cap, sc->nsp, need, sizeof *sc->sf))
+		return 0;
 	sc->spcap = cap;
 	return 1;
 }
@@ -202,6 +221,7 @@ visit(void *vctx, uint32_t g)
 	if (sc->oom)
 		return;
 	if (!grow((void **)&sc->cv, &sc->cvcap, sc->ncv, cap, sizeof *sc->cv) ||
+	    !grow((void **)&sc->uv, &sc->uvcap, 2 * sc->ncv, 2 * cap, sizeof *sc->uv) ||
 	    !grow((void **)&sc->g, &sc->gcap, sc->ng, 1, sizeof *sc->g)) {
 		sc->oom = 1;
 		return;
@@ -244,26 +264,45 @@ visit(void *vctx, uint32_t g)
 	sc->ncv += kept;
 	P->d = pm_ddot(N, pm_clip_middle(&cl));
 	P->ax = fabs(N.x) > fabs(N.y) ? (fabs(N.x) > fabs(N.z) ? 0 : 2) : (fabs(N.y) > fabs(N.z) ? 1 : 2);
+	P->nax = fabs(comp(N, P->ax));
+	for (int a = 0; a < 3; a++) {
+		P->lo[a] = INFINITY;
+		P->hi[a] = -INFINITY;
+	}
+	for (int i = 0; i < kept; i++) {
+		pm_dvec3 v = sc->cv[P->v0 + i];
+		for (int a = 0; a < 3; a++) {
+			P->lo[a] = fmin(P->lo[a], comp(v, a));
+			P->hi[a] = fmax(P->hi[a], comp(v, a));
+		}
+		sc->uv[2 * (P->v0 + i)] = comp(v, (P->ax + 1) % 3);
+		sc->uv[2 * (P->v0 + i) + 1] = comp(v, (P->ax + 2) % 3);
+	}
 }
 
 /* 1 if point p (near P's plane) is inside P's clipped polygon; within tol
  * of its boundary, edge_in. Crossing number in the coordinate plane P
- * projects best to. */
+ * projects best to, where distances shrink by at most P->nax. */
 static int
 inside(const pm_comp_scratch *sc, const cpoly *P, pm_dvec3 p, double tol, int edge_in)
 {
-	const pm_dvec3 *v = sc->cv + P->v0;
+	const double *uv = sc->uv + 2 * P->v0;
 	int u = (P->ax + 1) % 3, w = (P->ax + 2) % 3, in = 0;
-	double pu = comp(p, u), pw = comp(p, w);
+	double pu = comp(p, u), pw = comp(p, w), t2 = tol * tol * P->nax * P->nax;
 
+	if (p.x < P->lo[0] - tol || p.x > P->hi[0] + tol || p.y < P->lo[1] - tol ||
+	    p.y > P->hi[1] + tol || p.z < P->lo[2] - tol || p.z > P->hi[2] + tol)
+		return 0;
 	for (int i = 0, j = P->nv - 1; i < P->nv; j = i++) {
-		pm_dvec3 e = pm_dsub(v[i], v[j]), r = pm_dsub(p, v[j]);
-		double ee = pm_ddot(e, e), t = ee > 0 ? fmin(1, fmax(0, pm_ddot(r, e) / ee)) : 0;
-		pm_dvec3 off = pm_dsub(r, pm_dscale(e, t));
-		double iu = comp(v[i], u), iw = comp(v[i], w), ju = comp(v[j], u), jw = comp(v[j], w);
-		if (pm_ddot(off, off) <= tol * tol)
+		double iu = uv[2 * i], iw = uv[2 * i + 1], ju = uv[2 * j], jw = uv[2 * j + 1];
+		double eu = iu - ju, ew = iw - jw, ru = pu - ju, rw = pw - jw;
+		double ee = eu * eu + ew * ew, t = ee > 0 ? (ru * eu + rw * ew) / ee : 0;
+		t = t < 0 ? 0 : t > 1 ? 1 : t;
+		ru -= t * eu;
+		rw -= t * ew;
+		if (ru * ru + rw * rw <= t2)
 			return edge_in;
-		if ((iw > pw) != (jw > pw) && pu < (ju - iu) * (pw - iw) / (jw - iw) + iu)
+		if ((iw > pw) != (jw > pw) && pu < eu * (pw - iw) / ew + iu)
 			in = !in;
 	}
 	return in;
@@ -288,9 +327,9 @@ seen(const pm_comp_scratch *sc, const cpoly *P, pm_dvec3 xo, pm_dvec3 y, double 
 }
 
 /* The fate of the backward ray from y toward psi through the cube: -1 if it
- * meets none of the polygons cand[0..nc-1] (it leaves the cube or meets a
- * wall across an edge), else which object it meets first and from which
- * side. A hit at distance 0 (a face resting on y's surface) counts; a hit
+ * meets none of the polygons cand[0..nc-1] first but the front of a wall
+ * across an edge (or leaves the cube), else which object it meets first and
+ * from which side. A hit at distance 0 (a face resting on y's surface) counts; a hit
  * within eps of the polygon's edge does not (the next polygon of a mesh). */
 static int
 fate(const pm_comp_scratch *sc, const int *cand, int nc, pm_dvec3 y, pm_dvec3 psi, double eps)
@@ -299,7 +338,7 @@ fate(const pm_comp_scratch *sc, const int *cand, int nc, pm_dvec3 y, pm_dvec3 ps
 	int f = -1;
 
 	for (int i = 0; i < nc; i++) {
-		const cpoly *B = &sc->g[cand[i]];
+		const cpoly *B = &sc->g[IDX(cand[i])];
 		double dn = pm_ddot(B->N, psi), gap = B->d - pm_ddot(B->N, y), t;
 		if (fabs(dn) < 1e-9)
 			continue;
@@ -312,9 +351,47 @@ fate(const pm_comp_scratch *sc, const int *cand, int nc, pm_dvec3 y, pm_dvec3 ps
 		if (t >= best || !inside(sc, B, pm_dadd(y, pm_dscale(psi, t)), eps, 0))
 			continue;
 		best = t;
-		f = 2 * B->obj + (dn > 0);
+		/* The front of a wall across an edge is where light comes from,
+		 * as it is beyond the cube. */
+		f = (cand[i] & MATTER) && dn < 0 ? -1 : 2 * B->obj + (dn > 0);
 	}
 	return f;
+}
+
+/* 1 if a backward ray along psi from some point of P may meet B: the box
+ * of P's vertices moved along psi onto B's plane (a point that would move
+ * backwards stays put) meets B's box. */
+static int
+reach(const pm_comp_scratch *sc, const cpoly *P, const cpoly *B, pm_dvec3 psi, double eps)
+{
+	double dn = pm_ddot(B->N, psi), lo[3] = {INFINITY, INFINITY, INFINITY};
+	double hi[3] = {-INFINITY, -INFINITY, -INFINITY};
+	int any = 0;
+
+	if (fabs(dn) < 1e-9)
+		return 0;
+	for (int i = 0; i < P->nv; i++) {
+		pm_dvec3 v = sc->cv[P->v0 + i];
+		double gap = B->d - pm_ddot(B->N, v), t = gap / dn;
+		if (t < 0) {
+			if (fabs(gap) > eps)
+				t = 0;
+			else
+				any = 1;
+		} else
+			any = 1;
+		v = pm_dadd(v, pm_dscale(psi, t > 0 ? t : 0));
+		for (int a = 0; a < 3; a++) {
+			lo[a] = fmin(lo[a], comp(v, a));
+			hi[a] = fmax(hi[a], comp(v, a));
+		}
+	}
+	if (!any)
+		return 0;
+	for (int a = 0; a < 3; a++)
+		if (hi[a] < B->lo[a] - eps || lo[a] > B->hi[a] + eps)
+			return 0;
+	return 1;
 }
 
 /* Signed distances of Q's clipped vertices to the plane (M, m): the largest
@@ -331,6 +408,45 @@ span(const pm_comp_scratch *sc, const cpoly *Q, pm_dvec3 M, double m, double *lo
 	}
 }
 
+/* 0 if B lies outside the pyramid from x' over P, so that no segment from
+ * x' to P can cross it: behind P's plane, or beyond one of the planes
+ * through x' and an edge of P (P convex; otherwise 1). */
+static int
+between(const pm_comp_scratch *sc, const cpoly *P, const cpoly *B, pm_dvec3 xo, double eps)
+{
+	const pm_dvec3 *v = sc->cv + P->v0;
+	double sxo = pm_ddot(P->N, xo) - P->d, lo, hi;
+	pm_dvec3 c = pm_dv3(0, 0, 0);
+
+	span(sc, B, P->N, P->d, &lo, &hi);
+	if (sxo > 0 ? hi <= eps : lo >= -eps)
+		return 0;
+	for (int i = 0; i < P->nv; i++)
+		c = pm_dadd(c, v[i]);
+	c = pm_dscale(c, 1.0 / P->nv);
+	for (int i = 0, j = P->nv - 1; i < P->nv; j = i++) {
+		pm_dvec3 m = pm_dcross(pm_dsub(v[i], xo), pm_dsub(v[j], xo));
+		double ml = pm_dlen(m), sc0, out = 1;
+		if (!(ml > 0))
+			continue;
+		m = pm_dscale(m, 1 / ml);
+		sc0 = pm_ddot(m, pm_dsub(c, xo));
+		if (sc0 == 0)
+			return 1;
+		for (int k = 0; k < P->nv; k++)
+			if ((pm_ddot(m, pm_dsub(v[k], xo)) > eps) != (sc0 > 0) &&
+			    fabs(pm_ddot(m, pm_dsub(v[k], xo))) > eps)
+				return 1;   /* not convex as seen from x' */
+		for (int k = 0; k < B->nv && out; k++) {
+			double t = pm_ddot(m, pm_dsub(sc->cv[B->v0 + k], xo));
+			out = sc0 > 0 ? t < -eps : t > eps;
+		}
+		if (out)
+			return 0;
+	}
+	return 1;
+}
+
 /* For each polygon: which others may hide part of it from x' (R list), and
  * which a backward ray from it may meet so that its fate differs from the
  * open one (F list): layers over it (|N_b . N| >= LAYER_COS) with some part
@@ -342,7 +458,7 @@ pair_lists(pm_comp_scratch *sc, pm_dvec3 xo, pm_dvec3 n, double eps, int *xf0, i
 	int ng = sc->ng;
 
 	sc->nbl = 0;
-	if (!grow((void **)&sc->bl, &sc->blcap, 0, 2 * ng * ng + ng + 1, sizeof *sc->bl))
+	if (!grow((void **)&sc->bl, &sc->blcap, 0, 2 * ng * ng + 2 * ng + 1, sizeof *sc->bl))
 		return 0;
 	for (int a = 0; a < ng; a++) {
 		cpoly *P = &sc->g[a];
@@ -357,30 +473,37 @@ pair_lists(pm_comp_scratch *sc, pm_dvec3 xo, pm_dvec3 n, double eps, int *xf0, i
 			if (B->xon && B->solid && B->obj == P->obj)
 				continue;
 			span(sc, P, B->N, B->d, &lo, &hi);
-			if (sx > 0 ? lo < -eps : hi > eps)
+			if ((sx > 0 ? lo < -eps : hi > eps) && between(sc, P, B, xo, eps))
 				sc->bl[sc->nbl++] = b;
 		}
 		P->nr = sc->nbl - P->r0;
 		P->f0 = sc->nbl;
-		for (int b = 0; b < ng; b++) {
-			const cpoly *B = &sc->g[b];
-			double lo, hi, plo, phi;
-			int layer = fabs(pm_ddot(B->N, P->N)) >= LAYER_COS, cand = 0;
-			if (b == a)
-				continue;
-			span(sc, B, P->Ne, P->de, &lo, &hi);
-			if (layer && hi > eps)
-				cand = 1;
-			else if (layer && lo >= -eps)
-				/* On P's plane: resting on it facing it, or the same
-				 * surface twice (the lower polygon number wins). */
-				cand = pm_ddot(B->Ne, P->Ne) < 0 || B->g < P->g;
-			else if (B->solid && hi > eps) {
-				span(sc, P, B->N, B->d, &plo, &phi);
-				cand = plo < -eps;
+		for (int pass = 0; pass < 2; pass++) {
+			for (int b = 0; b < ng; b++) {
+				const cpoly *B = &sc->g[b];
+				double lo, hi, plo, phi;
+				int layer = fabs(pm_ddot(B->N, P->N)) >= LAYER_COS, cand = 0, on;
+				if (b == a)
+					continue;
+				span(sc, B, P->Ne, P->de, &lo, &hi);
+				on = layer && hi <= eps && lo >= -eps;
+				if (on != (pass == 0))
+					continue;
+				if (on)
+					/* On P's plane: resting on it facing it, or the
+					 * same surface twice (the lower number wins). */
+					cand = pm_ddot(B->Ne, P->Ne) < 0 || B->g < P->g;
+				else if (layer && hi > eps)
+					cand = 1;
+				else if (B->solid && hi > eps) {
+					span(sc, P, B->N, B->d, &plo, &phi);
+					cand = plo < -eps ? 2 : 0;
+				}
+				if (cand)
+					sc->bl[sc->nbl++] = cand == 2 ? b | MATTER : b;
 			}
-			if (cand)
-				sc->bl[sc->nbl++] = b;
+			if (pass == 0)
+				P->nfc = sc->nbl - P->f0;
 		}
 		P->nf = sc->nbl - P->f0;
 	}
@@ -393,24 +516,28 @@ pair_lists(pm_comp_scratch *sc, pm_dvec3 xo, pm_dvec3 n, double eps, int *xf0, i
 		span(sc, B, n, 0, &lo, &hi);
 		if (!(hi > eps))
 			continue;
-		if (fabs(pm_ddot(B->N, n)) >= LAYER_COS || (B->solid && B->d > eps))
+		if (fabs(pm_ddot(B->N, n)) >= LAYER_COS)
 			sc->bl[sc->nbl++] = b;
+		else if (B->solid && B->d > eps)
+			sc->bl[sc->nbl++] = b | MATTER;
 	}
 	*nxf = sc->nbl - *xf0;
 	return 1;
 }
 
-/* Sample points of P: the centres of the GRID x GRID cells of its bounding
- * rectangle that lie inside it, each carrying an equal share of its area;
+/* Sample points of P: the centres of the G x G cells of its bounding
+ * rectangle that lie inside it (G up to GRID, fewer for a polygon that
+ * fills only a little of the cube), each carrying an equal share of its area;
  * and which of them x' sees. */
 static int
-sample(pm_comp_scratch *sc, cpoly *P, pm_dvec3 xo, double eps)
+sample(pm_comp_scratch *sc, cpoly *P, pm_dvec3 xo, double h, double eps)
 {
 	pm_dvec3 t1, t2, base;
 	double lo1 = INFINITY, hi1 = -INFINITY, lo2 = INFINITY, hi2 = -INFINITY;
-	int kept = 0;
+	int kept = 0, G = (int)ceil(GRID * sqrt(P->A / (4 * h * h)));
 
-	if (!grow_samples(sc, GRID * GRID))
+	G = G < 2 ? 2 : G > GRID ? GRID : G;
+	if (!grow_samples(sc, G * G))
 		return 0;
 	t1 = fabs(P->N.x) < 0.9 ? pm_dv3(1, 0, 0) : pm_dv3(0, 1, 0);
 	t1 = pm_dsub(t1, pm_dscale(P->N, pm_ddot(t1, P->N)));
@@ -425,10 +552,10 @@ sample(pm_comp_scratch *sc, cpoly *P, pm_dvec3 xo, double eps)
 	}
 	base = pm_dscale(P->N, P->d);
 	P->s0 = sc->nsp;
-	for (int i = 0; i < GRID; i++)
-		for (int j = 0; j < GRID; j++) {
-			double a = lo1 + (hi1 - lo1) * (i + 0.5) / GRID;
-			double b = lo2 + (hi2 - lo2) * (j + 0.5) / GRID;
+	for (int i = 0; i < G; i++)
+		for (int j = 0; j < G; j++) {
+			double a = lo1 + (hi1 - lo1) * (i + 0.5) / G;
+			double b = lo2 + (hi2 - lo2) * (j + 0.5) / G;
 			pm_dvec3 p = pm_dadd(base, pm_dadd(pm_dscale(t1, a), pm_dscale(t2, b)));
 			if (inside(sc, P, p, 0, 1))
 				sc->sp[P->s0 + kept++] = p;
@@ -441,12 +568,37 @@ sample(pm_comp_scratch *sc, cpoly *P, pm_dvec3 xo, double eps)
 	}
 	P->ns = kept;
 	sc->nsp += kept;
-	P->avis = 0;
+	P->avis = P->aopen = 0;
+	P->ndyn = 0;
+	P->adyn = 0;
 	for (int i = P->s0; i < P->s0 + kept; i++) {
 		sc->sw[i] = P->A / kept;
 		sc->sv[i] = (unsigned char)seen(sc, P, xo, sc->sp[i], eps);
+		/* Covered by a polygon on P's plane: a backward ray meets it at
+		 * once, whatever its direction. */
+		sc->sf[i] = -1;
+		for (int b = 0; b < P->nfc && sc->sf[i] < 0; b++) {
+			const cpoly *B = &sc->g[sc->bl[P->f0 + b]];
+			if (inside(sc, B, sc->sp[i], eps, 0))
+				sc->sf[i] = 2 * B->obj + (pm_ddot(B->N, P->Ne) > 0);
+		}
+		/* A layer off P's plane, or a solid P's point lies behind, can
+		 * change the fate with the direction; the front of a solid
+		 * across an edge alone cannot. */
+		for (int b = P->nfc; b < P->nf && sc->sf[i] == -1; b++) {
+			int e = sc->bl[P->f0 + b];
+			const cpoly *B = &sc->g[IDX(e)];
+			if (!(e & MATTER) || pm_ddot(B->N, sc->sp[i]) - B->d < -eps)
+				sc->sf[i] = -2;
+		}
 		if (sc->sv[i])
 			P->avis += sc->sw[i];
+		if (sc->sv[i] && sc->sf[i] == -1)
+			P->aopen += sc->sw[i];
+		if (sc->sv[i] && sc->sf[i] == -2) {
+			P->ndyn++;
+			P->adyn += sc->sw[i];
+		}
 	}
 	return 1;
 }
@@ -570,14 +722,19 @@ pm_comp_weights(const pm_polyindex *pi, pm_vec3 x, pm_vec3 n,
 		P->de = pm_ddot(P->Ne, P->N) * P->d;
 		P->xon = fabs(P->d) <= eps && inside(sc, P, pm_dv3(0, 0, 0), eps, 1);
 		P->xpar = fabs(pm_ddot(P->N, nd)) >= 1 - PARALLEL_EPS && fabs(P->d) <= eps;
-		P->avis = P->A;
+		P->avis = P->aopen = P->A;
+		P->nfc = P->ndyn = 0;
+		P->adyn = 0;
 	}
 	if (sc->ng > 1) {
 		if (!pair_lists(sc, xo, nd, eps, &xf0, &nxf))
 			goto out;
 		for (int a = 0; a < sc->ng; a++)
-			if ((sc->g[a].nr > 0 || sc->g[a].nf > 0) && !sample(sc, &sc->g[a], xo, eps))
-				goto out;
+			if (sc->g[a].nr > 0 || sc->g[a].nf > 0) {
+				if (!sample(sc, &sc->g[a], xo, h, eps))
+					goto out;
+				z.sampled++;
+			}
 	}
 
 	/* Which photons count: each lies on a polygon of the cube, on the side
@@ -587,7 +744,19 @@ pm_comp_weights(const pm_polyindex *pi, pm_vec3 x, pm_vec3 n,
 		int i = sc->act[j], own = -1, fy;
 		pm_dvec3 r = pm_dsub(pm_dfromf(pos[i]), xd), psi = sc->psi[j];
 		sc->own[j] = -1;
-		for (int a = 0; a < sc->ng && own < 0; a++) {
+		/* A photon in the cube lies on one of its polygons: where only
+		 * one plane holds it, that one (no inside test needed). */
+		int nplane = 0, first = -1;
+		for (int a = 0; a < sc->ng; a++) {
+			const cpoly *P = &sc->g[a];
+			if (fabs(pm_ddot(P->N, r) - P->d) > eps)
+				continue;
+			if (nplane++ == 0)
+				first = a;
+		}
+		if (nplane == 1)
+			own = pm_ddot(psi, sc->g[first].Ne) > 0 ? first : -1;
+		for (int a = first; nplane > 1 && a < sc->ng && own < 0; a++) {
 			const cpoly *P = &sc->g[a];
 			if (fabs(pm_ddot(P->N, r) - P->d) <= eps && pm_ddot(psi, P->Ne) > 0 &&
 			    inside(sc, P, r, eps, 1))
@@ -609,6 +778,7 @@ pm_comp_weights(const pm_polyindex *pi, pm_vec3 x, pm_vec3 n,
 
 	/* Eq. 4 over what counts, eq. 2 and 3: Phi_p / A_p (Psi_p . N). */
 	double thr = PM_COMP_SKIP_REL * 4 * h * h;
+	int *cand = sc->bl + sc->nbl;
 	for (int j = 0; j < na; j++) {
 		int own = sc->own[j];
 		double A = 0, c = sc->c[j];
@@ -620,19 +790,30 @@ pm_comp_weights(const pm_polyindex *pi, pm_vec3 x, pm_vec3 n,
 			double f = facing(P, psi, c, nd), s = 0;
 			if (!(f > 0))
 				continue;
-			if (P->nf == 0) {
-				if (sc->fx[j] < 0)
-					A += f * P->avis;
+			/* The polygons off P's plane that a backward ray from P may
+			 * meet along psi. */
+			int nc = 0;
+			for (int b = P->nfc; b < P->nf && P->ndyn > 0; b++)
+				if (reach(sc, P, &sc->g[IDX(sc->bl[P->f0 + b])], psi, eps))
+					cand[nc++] = sc->bl[P->f0 + b];
+			if (nc == 0 && sc->fx[j] < 0) {
+				A += f * (P->aopen + P->adyn);
 				continue;
 			}
-			for (int t = P->s0; t < P->s0 + P->ns; t++)
-				if (sc->sv[t] && fate(sc, sc->bl + P->f0, P->nf, sc->sp[t], psi, eps) == sc->fx[j])
+			for (int t = P->s0; t < P->s0 + P->ns; t++) {
+				int ft = sc->sf[t];
+				if (!sc->sv[t])
+					continue;
+				if (ft == -2)
+					ft = nc > 0 ? fate(sc, cand, nc, sc->sp[t], psi, eps) : -1;
+				if (ft == sc->fx[j])
 					s += sc->sw[t];
+			}
 			A += f * s;
 		}
 		/* The photon's own spot is exposed: never less than its cell. */
 		const cpoly *O = &sc->g[own];
-		A = fmax(A, facing(O, psi, c, nd) * O->A / (GRID * GRID));
+		A = fmax(A, facing(O, psi, c, nd) * O->A / (O->ns > 0 ? O->ns : GRID * GRID));
 		if (A > thr * c)
 			w[sc->act[j]] = c / A;
 		else

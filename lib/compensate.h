@@ -48,6 +48,7 @@ typedef struct pm_comp_stats {
 	int skipped;     /* of those, without target area (A_p ~ 0) */
 	int hidden;      /* of those, behind another polygon as seen from x */
 	int polys;       /* polygons with area in the cube */
+	int sampled;     /* of those, given sample points (something can hide part of it) */
 	int closed;      /* 1 if the cube was closed (see above) */
 } pm_comp_stats;
 
