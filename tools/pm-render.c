@@ -18,7 +18,7 @@
 #include "util.h"
 
 static const char usage[] =
-	"pm-render SCENE [MAP|-] [-e classical|compensated|path|photons] [-k K] [-p SAMPLES] "
+	"pm-render SCENE [MAP|-] [-e classical|compensated|path|photons] [-k K] [--classical-norm k|k-1] [-p SAMPLES] "
 	"[-P I/N] [-s SEED] [-t TIME] [-j THREADS] [-q] [--force] -o OUT.exr";
 
 _Noreturn static void
@@ -31,6 +31,10 @@ help(void)
 	       "              photons shows MAP's photons as seen from the camera\n"
 	       "  -j THREADS  threads, 0 for all cores (default 0); the output does not depend on it\n"
 	       "  -k K        nearest photons per estimate (default 50)\n"
+	       "  --classical-norm k|k-1  the classical estimate's flux over pi r^2: of\n"
+	       "              all k photons (k, Jensen's, the default) or scaled by (k-1)/k\n"
+	       "              (k-1: unbiased on flat, evenly lit surfaces, where k reads\n"
+	       "              bright by 1/(k-1)); k-1 needs -e classical and -k 2 or more\n"
 	       "  -o OUT.exr  output image (required)\n"
 	       "  -p SAMPLES  camera samples per pixel (default 4)\n"
 	       "  --max-samples N  refuse -p above N, against typos (default 65536)\n"
@@ -59,6 +63,7 @@ main(int argc, char **argv)
 	static const struct option longopts[] = {
 		{"force", no_argument, NULL, 'F'},
 		{"max-samples", required_argument, NULL, 'M'},
+		{"classical-norm", required_argument, NULL, 'N'},
 		{"help", no_argument, NULL, 'h'},
 		{0, 0, 0, 0},
 	};
@@ -91,6 +96,10 @@ main(int argc, char **argv)
 		case 'j': threads = (int)parse_int(optarg, 0, 4096, "-j", usage); break;
 		case 'k': o.k = (int)parse_int(optarg, 1, 100000, "-k", usage); break;
 		case 'o': out = optarg; break;
+		case 'N':
+			if ((o.classical_norm = pm_classical_norm_parse(optarg)) < 0)
+				usage_err(usage, "--classical-norm: unknown normalisation '%s' (k or k-1)", optarg);
+			break;
 		case 'M': max_spp = (int)parse_int(optarg, 1, 1 << 30, "--max-samples", usage); break;
 		case 'p': o.spp = (int)parse_int(optarg, 1, 1 << 30, "-p", usage); break;
 		case 'P':
@@ -114,6 +123,11 @@ main(int argc, char **argv)
 		          pm_estimator_name(o.estimator));
 	if (!out)
 		usage_err(usage, "no output given (-o OUT.exr)");
+	if (o.classical_norm == PM_NORM_K1 && o.estimator != PM_EST_CLASSICAL)
+		usage_err(usage, "--classical-norm k-1 is for -e classical, not %s",
+		          pm_estimator_name(o.estimator));
+	if (o.classical_norm == PM_NORM_K1 && o.k < 2)
+		usage_err(usage, "--classical-norm k-1 needs -k 2 or more (one photon would give 0)");
 	if (o.spp > max_spp)
 		usage_err(usage, "-p: %d is more than %d samples per pixel (a typo? --max-samples raises the limit)",
 		          o.spp, max_spp);
