@@ -17,6 +17,7 @@
 
 #include "bsdf.h"
 #include "clip.h"
+#include "overlap.h"
 
 /* A polygon whose unit normal is this close to +-n is taken as lying in the
  * plane of x (1 - cos of about 1.4 milliradians). */
@@ -33,7 +34,9 @@
 /* In a polygon's list of what its backward rays may meet: a solid that is
  * no layer over it, which matters only when met from behind. */
 #define MATTER (1 << 30)
-#define IDX(e) ((e) & (MATTER - 1))
+/* ... a polygon wholly in front of it. */
+#define FRONT (1 << 29)
+#define IDX(e) ((e) & (FRONT - 1))
 
 typedef struct cpoly {
 	uint32_t g;            /* scene polygon */
@@ -43,6 +46,7 @@ typedef struct cpoly {
 	double A;              /* area in the cube */
 	int v0, nv;            /* clipped vertices sc->cv[v0 ..], sc->uv[2 v0 ..] */
 	int ax;                /* axis N points most along (2-D inside test) */
+	int convex;
 	double nax;            /* |N| along it */
 	double lo[3], hi[3];   /* bounding box of the clipped polygon */
 	int xon;               /* x lies on it */
@@ -80,6 +84,8 @@ struct pm_comp_scratch {
 	pm_dvec3 *sp;          /* sample points */
 	double *sw;            /* their areas */
 	unsigned char *sv;     /* seen from x' */
+	pm_dvec3 *ov;          /* pm_overlap_area's scratch */
+	int ovcap;
 	int *sf;               /* fate for every direction (covered), -1 (open
 	                          for every direction) or -2 (depends on it) */
 	int nsp, spcap;
@@ -140,6 +146,7 @@ pm_comp_scratch_free(pm_comp_scratch *sc)
 	free(sc->sw);
 	free(sc->sv);
 	free(sc->sf);
+	free(sc->ov);
 	free(sc);
 }
 
@@ -500,7 +507,8 @@ pair_lists(pm_comp_scratch *sc, pm_dvec3 xo, pm_dvec3 n, double eps, int *xf0, i
 					cand = plo < -eps ? 2 : 0;
 				}
 				if (cand)
-					sc->bl[sc->nbl++] = cand == 2 ? b | MATTER : b;
+					sc->bl[sc->nbl++] = (cand == 2 ? b | MATTER : b) |
+						(!on && lo >= -eps ? FRONT : 0);
 			}
 			if (pass == 0)
 				P->nfc = sc->nbl - P->f0;
@@ -723,6 +731,7 @@ pm_comp_weights(const pm_polyindex *pi, pm_vec3 x, pm_vec3 n,
 		P->xon = fabs(P->d) <= eps && inside(sc, P, pm_dv3(0, 0, 0), eps, 1);
 		P->xpar = fabs(pm_ddot(P->N, nd)) >= 1 - PARALLEL_EPS && fabs(P->d) <= eps;
 		P->avis = P->aopen = P->A;
+		P->convex = pm_poly_convex(sc->cv + P->v0, P->nv, P->N);
 		P->nfc = P->ndyn = 0;
 		P->adyn = 0;
 	}
@@ -798,6 +807,21 @@ pm_comp_weights(const pm_polyindex *pi, pm_vec3 x, pm_vec3 n,
 					cand[nc++] = sc->bl[P->f0 + b];
 			if (nc == 0 && sc->fx[j] < 0) {
 				A += f * (P->aopen + P->adyn);
+				continue;
+			}
+			if (nc == 1 && P->nr == 0 && P->nfc == 0 && P->convex && (cand[0] & FRONT)) {
+				/* One polygon in front of P, all of P seen: what it
+				 * covers of P along psi, exactly. */
+				const cpoly *B = &sc->g[IDX(cand[0])];
+				double dn = pm_ddot(B->N, psi), ov = 0;
+				int fb = (cand[0] & MATTER) && dn < 0 ? -1 : 2 * B->obj + (dn > 0);
+				if (fb >= 0) {
+					if (!grow((void **)&sc->ov, &sc->ovcap, 0, 2 * (B->nv + P->nv) + 8, sizeof *sc->ov))
+						goto out;
+					ov = pm_overlap_area(sc->cv + B->v0, B->nv, sc->cv + P->v0, P->nv, P->N, psi, sc->ov);
+				}
+				s = sc->fx[j] < 0 ? P->A - ov : sc->fx[j] == fb ? ov : 0;
+				A += f * fmax(0, s);
 				continue;
 			}
 			for (int t = P->s0; t < P->s0 + P->ns; t++) {
