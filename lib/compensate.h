@@ -3,8 +3,21 @@
  * pm_estimate_compensated (estimate.h), which finds the photons and then
  * does what pm_comp_weights does.
  *
- * The rules where the paper is silent (see the README's section on the
- * compensated estimate):
+ * The model (the README's section on the compensated estimate says why):
+ * a photon's target area A_p is the area, projected along its direction
+ * Psi_p, of the surface in the cube where a photon arriving along Psi_p
+ * could have landed and would have been used, and a photon is used exactly
+ * when its own spot passes the same test. A point y on polygon g passes for
+ * direction Psi when
+ *  - g faces Psi: solids on their front; sheets on the side facing x only;
+ *  - x' = x + (1e-3 of the cube) n sees y: the segment crosses no polygon of
+ *    the cube (faces of x's own solid across a convex edge excepted);
+ *  - y's backward ray along Psi meets what x's does within the cube: nothing
+ *    (or the front of a wall across an edge), or the same object from the
+ *    same side, where only layers (within 60 degrees of parallel to g) and
+ *    the backs of solids are looked for. A layer on g's plane facing it (a
+ *    block resting on a rug) covers y for every direction.
+ * Other choices:
  *  - The cube is the smallest L-infinity cube around x holding k photons. The
  *    search may have found only some of the photons on that cube's boundary
  *    (ties), most visibly when a wall parallel to a cube face enters it:
@@ -15,19 +28,11 @@
  *  - If the search found every photon there is (fewer than k in the map), or
  *    all of those it found are on the boundary, the cube is closed and a hair
  *    larger: every photon found counts, polygons in a face plane count.
- *  - Solid objects are one-sided: a polygon adds A_g (Psi_p . N_g) to a
- *    photon's target area only if it faces the photon. Open sheets are
- *    two-sided: A_g |Psi_p . N_g|.
  *  - A polygon parallel to the shading normal n uses Psi_p . n in place of
  *    Psi_p . N_g, so that for the surface holding x the factor cancels
  *    between (Psi_p . N) and A_p and grazing photons stay exact.
- *  - A photon arriving in front of n whose target area is (almost) nothing
- *    cannot be spread over any surface: it is skipped and counted.
- *  - Parallel layers hide each other: the part of a polygon behind a
- *    parallel polygon, seen along the photon's direction, is not target
- *    area (a picture on a wall, a rug, a box resting on a table); see
- *    overlap.h. Photons behind a polygon as seen from x (the segment from x
- *    crosses it in the cube) are left out: no light through thin walls.
+ *  - A_p is never less than the photon's own polygon's share of one sample
+ *    cell; a photon whose A_p is (almost) nothing is skipped and counted.
  *  - Photons all at one point (cube of size 0): the cube gets a minimum
  *    half-size of HMIN_REL times the size of the photon-surface geometry. */
 #ifndef PM_COMPENSATE_H
@@ -46,7 +51,8 @@ typedef struct pm_comp_stats {
 	int shell;       /* of those, set aside on the cube's boundary */
 	int front;       /* used photons arriving in front of n */
 	int skipped;     /* of those, without target area (A_p ~ 0) */
-	int hidden;      /* of those, behind another polygon as seen from x */
+	int hidden;      /* of those, failing the model's test (not on a facing
+	                    polygon of the cube, unseen from x', another fate) */
 	int polys;       /* polygons with area in the cube */
 	int sampled;     /* of those, given sample points (something can hide part of it) */
 	int closed;      /* 1 if the cube was closed (see above) */

@@ -1,15 +1,12 @@
-/* overlap.h — where two parallel polygons hide each other inside the
- * compensated estimate's cube.
+/* overlap.h — how much of one polygon another hides along a direction,
+ * inside the compensated estimate's cube.
  *
- * The paper's target area (§3, eq. 4) sums the projected areas of the
- * front-facing polygons in the cube and assumes they do not overlap in the
- * photon's projection. Scenes break that constantly with parallel layers: a
- * picture 1 cm in front of a wall, a rug on a floor, a lamp just under a
- * ceiling, a box resting on a table (its bottom face on the tabletop). A
- * photon there lands on the front layer only, so the part of the back layer
- * behind the front one must not count in A_p. These functions give that
- * hidden area; compensate.c subtracts it. All geometry in double, relative
- * to the cube centre. */
+ * When exactly one layer (a rug over a floor, a picture over a wall, a
+ * table top over the floor) can be met by the backward rays from a fully
+ * seen convex polygon, the part of the polygon whose rays meet it is its
+ * overlap with the layer projected along the photon's direction: the
+ * estimate takes that area exactly instead of from sample points
+ * (compensate.c). All geometry in double, relative to the cube centre. */
 #ifndef PM_OVERLAP_H
 #define PM_OVERLAP_H
 
