@@ -34,6 +34,10 @@
 /* In a polygon's list of what its backward rays may meet: a solid that is
  * no layer over it, which matters only when met from behind. */
 #define MATTER (1 << 30)
+/* More polygons than this in one cube (a finely tessellated sphere): the
+ * fates are not followed (every ray counts as open), which keeps the cost
+ * of such cubes bounded; what x' sees still is. */
+#define FATE_MAX_POLYS 32
 /* ... a polygon wholly in front of it. */
 #define FRONT (1 << 29)
 #define IDX(e) ((e) & (FRONT - 1))
@@ -49,12 +53,15 @@ typedef struct cpoly {
 	int convex;
 	double nax;            /* |N| along it */
 	double lo[3], hi[3];   /* bounding box of the clipped polygon */
+	pm_dvec3 c;            /* ... its centre, and a radius about c */
+	double rad;
 	int xon;               /* x lies on it */
 	int xpar;              /* parallel to n */
 	int r0, nr;            /* polygons that may hide part of it from x' */
 	int f0, nf;            /* polygons a backward ray from it may meet ... */
 	int nfc;               /* ... the first nfc lying on its plane */
 	int s0, ns;            /* sample points */
+	int unseen;            /* a solid's face turned away from x': not seen */
 	double avis;           /* area seen from x' ... */
 	double aopen;          /* ... of it, not covered by a polygon on its plane */
 	int ndyn;              /* samples whose fate depends on the direction */
@@ -285,6 +292,8 @@ visit(void *vctx, uint32_t g)
 		sc->uv[2 * (P->v0 + i)] = comp(v, (P->ax + 1) % 3);
 		sc->uv[2 * (P->v0 + i) + 1] = comp(v, (P->ax + 2) % 3);
 	}
+	P->c = pm_dscale(pm_dadd(pm_dv3(P->lo[0], P->lo[1], P->lo[2]), pm_dv3(P->hi[0], P->hi[1], P->hi[2])), 0.5);
+	P->rad = 0.5 * pm_dlen(pm_dv3(P->hi[0] - P->lo[0], P->hi[1] - P->lo[1], P->hi[2] - P->lo[2]));
 }
 
 /* 1 if point p (near P's plane) is inside P's clipped polygon; within tol
@@ -406,12 +415,20 @@ reach(const pm_comp_scratch *sc, const cpoly *P, const cpoly *B, pm_dvec3 psi, d
 static void
 span(const pm_comp_scratch *sc, const cpoly *Q, pm_dvec3 M, double m, double *lo, double *hi)
 {
+	double c = pm_ddot(M, Q->c) - m;
+
+	/* Far from the plane, the bounding sphere says enough. */
+	if (fabs(c) > Q->rad) {
+		*lo = c - Q->rad;
+		*hi = c + Q->rad;
+		return;
+	}
 	*lo = INFINITY;
 	*hi = -INFINITY;
 	for (int i = 0; i < Q->nv; i++) {
 		double s = pm_ddot(M, sc->cv[Q->v0 + i]) - m;
-		*lo = fmin(*lo, s);
-		*hi = fmax(*hi, s);
+		*lo = s < *lo ? s : *lo;
+		*hi = s > *hi ? s : *hi;
 	}
 }
 
@@ -460,20 +477,37 @@ between(const pm_comp_scratch *sc, const cpoly *P, const cpoly *B, pm_dvec3 xo, 
  * in front of it or lying on it facing it; solids it lies partly behind.
  * Then the same F list for x itself (index ng). */
 static int
-pair_lists(pm_comp_scratch *sc, pm_dvec3 xo, pm_dvec3 n, double eps, int *xf0, int *nxf)
+pair_lists(pm_comp_scratch *sc, const unsigned char *cvx, pm_dvec3 xo, pm_dvec3 n, double eps,
+           int *xf0, int *nxf)
 {
 	int ng = sc->ng;
 
 	sc->nbl = 0;
 	if (!grow((void **)&sc->bl, &sc->blcap, 0, 2 * ng * ng + 2 * ng + 1, sizeof *sc->bl))
 		return 0;
+	int xobj[4], nxobj = 0;
+
+	for (int b = 0; b < ng; b++)
+		if (sc->g[b].xon && nxobj < 4)
+			xobj[nxobj++] = sc->g[b].obj;
 	for (int a = 0; a < ng; a++) {
 		cpoly *P = &sc->g[a];
+		int own = nxobj == 4;
 		P->r0 = sc->nbl;
-		for (int b = 0; b < ng; b++) {
+		/* The back of a solid, seen from outside it, is hidden by the
+		 * solid itself, unless x lies on that solid (a face across a
+		 * convex edge). */
+		for (int b = 0; b < nxobj && !own; b++)
+			own = xobj[b] == P->obj;
+		P->unseen = P->solid && !own && pm_ddot(P->N, xo) - P->d < -eps;
+		for (int b = 0; b < ng && !P->unseen; b++) {
 			const cpoly *B = &sc->g[b];
-			double sx = pm_ddot(B->N, xo) - B->d, lo, hi;
-			if (b == a || fabs(sx) <= eps)
+			double sx, lo, hi;
+			/* One convex solid's faces never hide each other. */
+			if (b == a || (B->obj == P->obj && cvx[P->obj]))
+				continue;
+			sx = pm_ddot(B->N, xo) - B->d;
+			if (fabs(sx) <= eps)
 				continue;
 			/* Through its own solid, x sees the faces across a convex
 			 * edge. */
@@ -485,7 +519,7 @@ pair_lists(pm_comp_scratch *sc, pm_dvec3 xo, pm_dvec3 n, double eps, int *xf0, i
 		}
 		P->nr = sc->nbl - P->r0;
 		P->f0 = sc->nbl;
-		for (int pass = 0; pass < 2; pass++) {
+		for (int pass = 0; pass < 2 && ng <= FATE_MAX_POLYS; pass++) {
 			for (int b = 0; b < ng; b++) {
 				const cpoly *B = &sc->g[b];
 				double lo, hi, plo, phi;
@@ -513,10 +547,12 @@ pair_lists(pm_comp_scratch *sc, pm_dvec3 xo, pm_dvec3 n, double eps, int *xf0, i
 			if (pass == 0)
 				P->nfc = sc->nbl - P->f0;
 		}
+		if (ng > FATE_MAX_POLYS)
+			P->nfc = 0;
 		P->nf = sc->nbl - P->f0;
 	}
 	*xf0 = sc->nbl;
-	for (int b = 0; b < ng; b++) {
+	for (int b = 0; b < ng && ng <= FATE_MAX_POLYS; b++) {
 		const cpoly *B = &sc->g[b];
 		double lo, hi;
 		if (B->xon)
@@ -545,6 +581,8 @@ sample(pm_comp_scratch *sc, cpoly *P, pm_dvec3 xo, double h, double eps)
 	int kept = 0, G = (int)ceil(GRID * sqrt(P->A / (4 * h * h)));
 
 	G = G < 2 ? 2 : G > GRID ? GRID : G;
+	if (P->nr + P->nf > 8 && G > 4)
+		G = 4;
 	if (!grow_samples(sc, G * G))
 		return 0;
 	t1 = fabs(P->N.x) < 0.9 ? pm_dv3(1, 0, 0) : pm_dv3(0, 1, 0);
@@ -731,15 +769,18 @@ pm_comp_weights(const pm_polyindex *pi, pm_vec3 x, pm_vec3 n,
 		P->xon = fabs(P->d) <= eps && inside(sc, P, pm_dv3(0, 0, 0), eps, 1);
 		P->xpar = fabs(pm_ddot(P->N, nd)) >= 1 - PARALLEL_EPS && fabs(P->d) <= eps;
 		P->avis = P->aopen = P->A;
+		P->unseen = 0;
 		P->convex = pm_poly_convex(sc->cv + P->v0, P->nv, P->N);
 		P->nfc = P->ndyn = 0;
 		P->adyn = 0;
 	}
 	if (sc->ng > 1) {
-		if (!pair_lists(sc, xo, nd, eps, &xf0, &nxf))
+		if (!pair_lists(sc, pi->convex, xo, nd, eps, &xf0, &nxf))
 			goto out;
 		for (int a = 0; a < sc->ng; a++)
-			if (sc->g[a].nr > 0 || sc->g[a].nf > 0) {
+			if (sc->g[a].unseen)
+				sc->g[a].avis = sc->g[a].aopen = 0;
+			else if (sc->g[a].nr > 0 || sc->g[a].nf > 0) {
 				if (!sample(sc, &sc->g[a], xo, h, eps))
 					goto out;
 				z.sampled++;
@@ -776,6 +817,10 @@ pm_comp_weights(const pm_polyindex *pi, pm_vec3 x, pm_vec3 n,
 			continue;
 		}
 		const cpoly *P = &sc->g[own];
+		if (P->unseen) {
+			z.hidden++;
+			continue;
+		}
 		sc->fx[j] = fate(sc, sc->bl + xf0, nxf, pm_dv3(0, 0, 0), psi, eps);
 		fy = fate(sc, sc->bl + P->f0, P->nf, r, psi, eps);
 		if (fy != sc->fx[j] || (P->nr > 0 && !seen(sc, P, xo, r, eps))) {
@@ -797,7 +842,7 @@ pm_comp_weights(const pm_polyindex *pi, pm_vec3 x, pm_vec3 n,
 		for (int a = 0; a < sc->ng; a++) {
 			const cpoly *P = &sc->g[a];
 			double f = facing(P, psi, c, nd), s = 0;
-			if (!(f > 0))
+			if (!(f > 0) || P->unseen)
 				continue;
 			/* The polygons off P's plane that a backward ray from P may
 			 * meet along psi. */

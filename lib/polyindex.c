@@ -114,6 +114,29 @@ build_node(builder *b, uint32_t lo, uint32_t hi)
 	return id;
 }
 
+/* 1 if o is a closed solid whose every vertex lies behind (or on) the plane
+ * of each of its polygons: a convex solid, whose faces never hide one
+ * another from a point outside it. Objects too large to check cost-free
+ * (faces x vertices above 2^25) count as not convex. */
+static int
+convex_solid(const pm_scene *s, const pm_object *o, const pm_vec3 *verts)
+{
+	double size = 0;
+
+	if (!o->solid || o->npolys < 4 || (double)o->npolys * o->nverts > (double)(1 << 25))
+		return 0;
+	for (uint32_t v = o->first_vert + 1; v < o->first_vert + o->nverts; v++)
+		size = fmax(size, pm_dlen(pm_dsub(pm_dfromf(verts[v]), pm_dfromf(verts[o->first_vert]))));
+	for (uint32_t g = o->first_poly; g < o->first_poly + o->npolys; g++) {
+		pm_dvec3 N = pm_dfromf(s->poly_normal[g]);
+		pm_dvec3 p = pm_dfromf(verts[s->poly_vert[s->poly_start[g]]]);
+		for (uint32_t v = o->first_vert; v < o->first_vert + o->nverts; v++)
+			if (pm_ddot(N, pm_dsub(pm_dfromf(verts[v]), p)) > 1e-5 * size)
+				return 0;
+	}
+	return 1;
+}
+
 int
 pm_polyindex_build(pm_polyindex **out, const pm_scene *s, const pm_vec3 *verts,
                    pm_error *err)
@@ -188,6 +211,13 @@ pm_polyindex_build(pm_polyindex **out, const pm_scene *s, const pm_vec3 *verts,
 			pi->extent = 0;
 	}
 	free(b.cen);
+	pi->convex = calloc((size_t)s->nobjs + 1, 1);
+	if (!pi->convex) {
+		pm_polyindex_free(pi);
+		return pm_seterr(err, "out of memory");
+	}
+	for (int o = 0; o < s->nobjs; o++)
+		pi->convex[o] = (unsigned char)convex_solid(s, &s->objs[o], verts);
 	*out = pi;
 	return 0;
 }
@@ -200,6 +230,7 @@ pm_polyindex_free(pm_polyindex *pi)
 	free(pi->prim);
 	free(pi->box);
 	free(pi->node);
+	free(pi->convex);
 	free(pi);
 }
 

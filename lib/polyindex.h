@@ -29,6 +29,7 @@ struct pm_polyindex {
 	pm_bvh_node *node;
 	uint32_t nnodes;
 	double extent;             /* largest side of all their boxes together */
+	unsigned char *convex;     /* per object: a convex solid */
 };
 
 /* Calls fn(ctx, polygon) for every photon-surface polygon whose bounding box
