@@ -150,3 +150,15 @@ bench bench-quick: deps
 	@$(MAKE) --no-print-directory bench-progs
 	@sh bench/run.sh $(if $(filter bench-quick,$@),quick,full) $(B)
 .PHONY: bench bench-quick bench-progs
+
+# The torture harness (tests/torture/): make torture [SCENES=200] runs
+# SCENES generated scenes (seeds 1..SCENES) and the regression scenes in
+# tests/torture/regress/, compensated and classical estimates against the
+# path tracer, 2 at a time; writes $(TORTURE_OUT)/report.md and contact
+# sheets. Settings: see tests/torture/scene.sh and report.sh.
+SCENES      ?= 200
+TORTURE_OUT ?= tests/torture/out
+torture:
+	@$(MAKE) --no-print-directory all-tests
+	@sh tests/torture/report.sh $(SCENES) 1 $(TORTURE_OUT)
+.PHONY: torture

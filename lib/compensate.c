@@ -37,7 +37,7 @@
 /* More polygons than this in one cube (a finely tessellated sphere): the
  * fates are not followed (every ray counts as open), which keeps the cost
  * of such cubes bounded; what x' sees still is. */
-#define FATE_MAX_POLYS 32
+#define FATE_MAX_POLYS 96
 /* ... a polygon wholly in front of it. */
 #define FRONT (1 << 29)
 #define IDX(e) ((e) & (FRONT - 1))
@@ -806,10 +806,13 @@ pm_comp_weights(const pm_polyindex *pi, pm_vec3 x, pm_vec3 n,
 		}
 		if (nplane == 1)
 			own = pm_ddot(psi, sc->g[first].Ne) > 0 ? first : -1;
-		for (int a = first; nplane > 1 && a < sc->ng && own < 0; a++) {
+		/* Where several do (an edge; the same surface twice), the
+		 * lowest polygon number that faces it and holds it: the one the
+		 * target area keeps of a surface given twice. */
+		for (int a = first; nplane > 1 && a < sc->ng; a++) {
 			const cpoly *P = &sc->g[a];
 			if (fabs(pm_ddot(P->N, r) - P->d) <= eps && pm_ddot(psi, P->Ne) > 0 &&
-			    inside(sc, P, r, eps, 1))
+			    (own < 0 || P->g < sc->g[own].g) && inside(sc, P, r, eps, 1))
 				own = a;
 		}
 		if (own < 0) {
