@@ -4,11 +4,12 @@
 # estimate from the same photon maps against the path tracer, and each
 # scene's furnace twin against the exact 2. Asserts the harness's bars for
 # the compensated estimate (tests/tools/torturestat --verdict):
-#   rmse_comp <= 1.05 rmse_class; max_comp <= 2 max_class; edge-band MAE of
-#   the local ratio comp <= 0.5 class; no fireflies; furnace: |mean edge
-#   error| <= 1%.
+#   rmse_comp <= 1.05 rmse_class; max_comp <= 2 max_class; the edge band's
+#   bias (split-half, see torturestat) comp <= 0.5 class; no fireflies;
+#   furnace: |mean edge error| <= 1%.
 # Also: genscene is deterministic and the furnace twin has the same geometry.
-# In the ASan tree (build-asan) only one scene, at smaller settings.
+# In the ASan tree (build-asan) only one scene, at smaller settings, and
+# no bars (it is there for memory errors).
 . "$PM_TOP/tests/lib.sh"
 tools=$PM_BIN/../tests/tools
 scene=$PM_TOP/tests/torture/scene.sh
@@ -31,6 +32,9 @@ case $PM_BIN in
 	# AddressSanitizer: one generated scene, tiny.
 	export SIZE="24 18" N=2 PHOTONS=4000 K=30 SPP=1 REFPASSES=2 REFSPP=8 FURNACE_N=2 J=1 TIMEOUT=300
 	scenes="20"
+	# This tree is for memory errors: at these settings the bars would
+	# measure noise, so only that the scene runs through is asserted.
+	nobars=1
 	;;
 *)
 	export SIZE="64 48" N=8 PHOTONS=100000 K=50 SPP=2 REFPASSES=8 REFSPP=64 FURNACE_N=8 J=1 TIMEOUT=120
@@ -61,6 +65,7 @@ for s in $scenes; do
 		echo "#   furnace: rmse $(v furnace_rmse_comp) / $(v furnace_rmse_class), max $(v furnace_max_comp) / $(v furnace_max_class), edge MAE $(v furnace_edge_mae_comp) / $(v furnace_edge_mae_class), mean edge error $(v furnace_edge_mean_err_comp) / $(v furnace_edge_mean_err_class)"
 	for pre in "" furnace_; do
 		[ -n "$(v ${pre}verdict)" ] || continue
+		[ -n "${nobars:-}" ] && continue
 		IFS=';'
 		for b in $bars; do
 			IFS=' '
