@@ -471,6 +471,31 @@ between(const pm_comp_scratch *sc, const cpoly *P, const cpoly *B, pm_dvec3 xo, 
 	return 1;
 }
 
+/* A ray that meets the back of a solid has gone through its front first,
+ * unless it started inside: so where a list holds a solid met from behind,
+ * it holds the rest of that solid's polygons in the cube too (each again
+ * counting only from behind), and a front met first ends the ray there as
+ * open. Appends to sc->bl from f0; returns the new length. */
+static int
+close_matter(pm_comp_scratch *sc, int f0, int skip)
+{
+	int n = sc->nbl;
+
+	for (int b = 0; b < sc->ng; b++) {
+		int in = 0, solid = 0;
+		if (b == skip)
+			continue;
+		for (int i = f0; i < n && !in; i++) {
+			int e = sc->bl[i];
+			in = IDX(e) == b;
+			solid |= (e & MATTER) && sc->g[IDX(e)].obj == sc->g[b].obj;
+		}
+		if (solid && !in)
+			sc->bl[sc->nbl++] = b | MATTER;
+	}
+	return sc->nbl;
+}
+
 /* For each polygon: which others may hide part of it from x' (R list), and
  * which a backward ray from it may meet so that its fate differs from the
  * open one (F list): layers over it (|N_b . N| >= LAYER_COS) with some part
@@ -483,7 +508,7 @@ pair_lists(pm_comp_scratch *sc, const unsigned char *cvx, pm_dvec3 xo, pm_dvec3 
 	int ng = sc->ng;
 
 	sc->nbl = 0;
-	if (!grow((void **)&sc->bl, &sc->blcap, 0, 2 * ng * ng + 2 * ng + 1, sizeof *sc->bl))
+	if (!grow((void **)&sc->bl, &sc->blcap, 0, 3 * ng * ng + 3 * ng + 1, sizeof *sc->bl))
 		return 0;
 	int xobj[4], nxobj = 0;
 
@@ -547,6 +572,8 @@ pair_lists(pm_comp_scratch *sc, const unsigned char *cvx, pm_dvec3 xo, pm_dvec3 
 			if (pass == 0)
 				P->nfc = sc->nbl - P->f0;
 		}
+		if (ng <= FATE_MAX_POLYS)
+			close_matter(sc, P->f0 + P->nfc, a);
 		if (ng > FATE_MAX_POLYS)
 			P->nfc = 0;
 		P->nf = sc->nbl - P->f0;
@@ -565,6 +592,8 @@ pair_lists(pm_comp_scratch *sc, const unsigned char *cvx, pm_dvec3 xo, pm_dvec3 
 		else if (B->solid && B->d > eps)
 			sc->bl[sc->nbl++] = b | MATTER;
 	}
+	if (ng <= FATE_MAX_POLYS)
+		close_matter(sc, *xf0, -1);
 	*nxf = sc->nbl - *xf0;
 	return 1;
 }
