@@ -31,6 +31,10 @@
 #define LAYER_COS 0.5
 /* x' = x + XOFF_REL h n: the point just off x's surface that looks. */
 #define XOFF_REL 1e-3
+/* Faces of x's own solid turned less than this from n (cos 30 degrees: the
+ * facets of a tessellated curve) are seen through it; those across a
+ * sharper convex edge are not: their light is their own. */
+#define SMOOTH_COS 0.866
 /* In a polygon's list of what its backward rays may meet: a solid that is
  * no layer over it, which matters only when met from behind. */
 #define MATTER (1 << 30)
@@ -523,20 +527,18 @@ pair_lists(pm_comp_scratch *sc, const unsigned char *cvx, pm_dvec3 xo, pm_dvec3 
 		 * solid itself, unless x lies on that solid (a face across a
 		 * convex edge). */
 		for (int b = 0; b < nxobj && !own; b++)
-			own = xobj[b] == P->obj;
+			own = xobj[b] == P->obj && pm_ddot(P->N, n) >= SMOOTH_COS;
 		P->unseen = P->solid && !own && pm_ddot(P->N, xo) - P->d < -eps;
 		for (int b = 0; b < ng && !P->unseen; b++) {
 			const cpoly *B = &sc->g[b];
 			double sx, lo, hi;
-			/* One convex solid's faces never hide each other. */
-			if (b == a || (B->obj == P->obj && cvx[P->obj]))
+			/* One convex solid's faces never hide each other, and x
+			 * sees its own solid's nearly flat neighbours through it. */
+			if (b == a || (B->obj == P->obj && cvx[P->obj]) ||
+			    (B->xon && B->solid && B->obj == P->obj && own))
 				continue;
 			sx = pm_ddot(B->N, xo) - B->d;
 			if (fabs(sx) <= eps)
-				continue;
-			/* Through its own solid, x sees the faces across a convex
-			 * edge. */
-			if (B->xon && B->solid && B->obj == P->obj)
 				continue;
 			span(sc, P, B->N, B->d, &lo, &hi);
 			if ((sx > 0 ? lo < -eps : hi > eps) && between(sc, P, B, xo, eps))
