@@ -158,7 +158,8 @@ bench bench-quick: deps
 # sheets. Settings: see tests/torture/scene.sh and report.sh.
 SCENES      ?= 200
 TORTURE_OUT ?= tests/torture/out
+KNOWN       ?= 0
 torture:
 	@$(MAKE) --no-print-directory all-tests
-	@sh tests/torture/report.sh $(SCENES) 1 $(TORTURE_OUT)
+	@KNOWN=$(KNOWN) sh tests/torture/report.sh $(SCENES) 1 $(TORTURE_OUT)
 .PHONY: torture

@@ -17,6 +17,7 @@
 # pass pairs per scene, default 12; SPP default 2, FURNACE_N 12, REFSPP 64), and
 #   P=2       scenes at a time (each program runs with J=1 thread)
 #   REGRESS=1 also the regression scenes (0: not)
+#   KNOWN=0   1: also the scenes of known/ (generated scenes that failed)
 #   REUSE=0   1: keep a scene whose stats.txt exists, do not rerun it
 #   WORST=8   rows in the contact sheets
 set -eu
@@ -25,7 +26,7 @@ top=$(cd "$here/../.." && pwd)
 [ $# -ge 1 ] && [ $# -le 3 ] || { echo "usage: report.sh N [FIRST_SEED] [OUTDIR]" >&2; exit 2; }
 count=$1 first=${2:-1} out=${3:-$top/tests/torture/out}
 case $count$first in *[!0-9]*) echo "usage: report.sh N [FIRST_SEED] [OUTDIR]" >&2; exit 2 ;; esac
-P=${P:-2} REGRESS=${REGRESS:-1} REUSE=${REUSE:-0} WORST=${WORST:-8}
+P=${P:-2} REGRESS=${REGRESS:-1} KNOWN=${KNOWN:-0} REUSE=${REUSE:-0} WORST=${WORST:-8}
 bin=${PM_BIN:-$top/build/bin}
 tools=$bin/../tests/tools
 mkdir -p "$out"
@@ -42,6 +43,13 @@ done
 if [ "$REGRESS" = 1 ]; then
 	for f in "$here"/regress/*.pms; do
 		[ -f "$f" ] && echo "$f $out/regress-$(basename "$f" .pms)" >>"$jobs"
+	done
+fi
+# KNOWN=1: also the generated scenes that failed a bar in the committed
+# report, kept as files in known/ (so a change to genscene cannot lose them).
+if [ "$KNOWN" = 1 ]; then
+	for f in "$here"/known/*/scene.pms; do
+		[ -f "$f" ] && echo "$f $out/known-$(basename "$(dirname "$f")")" >>"$jobs"
 	done
 fi
 njobs=$(wc -l <"$jobs")
