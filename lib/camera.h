@@ -1,4 +1,4 @@
-/* camera.h — the pinhole look-at camera of DESIGN.md's conventions:
+/* camera.h — the pinhole look-at camera (formats/scene.md):
  * f = normalize(look - eye), r = normalize(f x up), u = r x f; image x runs
  * along +r, image y runs down along -u; fov is the full vertical angle;
  * pixel (0,0) is the top-left pixel and covers raster [0,1] x [0,1]. */

@@ -7,12 +7,7 @@
 . "$PM_TOP/tests/lib.sh"
 T=$PM_BIN/../tests/tools
 
-cat >furnace.pms <<'SCENE'
-camera eye 0 1 2.6  look 0 1 -3  up 0 1 0  fov 50  size 40 30
-material f diffuse albedo 0.5 0.5 0.5 emit 1 1 1
-box f -2 0 -3  2 2.5 3 inward
-box f -0.6 0 -1.6  0.6 0.8 -0.8
-SCENE
+cp "$PM_TOP/tests/scenes/furnace.pms" furnace.pms
 # Pixels x 12..27, y 9..14: far wall only, above the table and well away
 # from ceiling and side walls (the sphere stays on the wall).
 W=12,9,28,15

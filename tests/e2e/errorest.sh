@@ -15,12 +15,7 @@
 . "$PM_TOP/tests/lib.sh"
 mkimg=$PM_BIN/../tests/tools/mkimg
 
-cat >furnace.pms <<'SCENE'
-camera eye 0 1 2.6  look 0 1 -3  up 0 1 0  fov 50  size 40 30
-material f diffuse albedo 0.5 0.5 0.5 emit 1 1 1
-box f -2 0 -3  2 2.5 3 inward
-box f -0.6 0 -1.6  0.6 0.8 -0.8
-SCENE
+cp "$PM_TOP/tests/scenes/furnace.pms" furnace.pms
 "$mkimg" -v 2,2,2 -c stderr.R=0 -c stderr.G=0 -c stderr.B=0 exact.exr 40 30
 
 # ratio NAME AVG [MASK-ARGS...]: measured RMSE / predicted RMSE in [1/1.5, 1.5].

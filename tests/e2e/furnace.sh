@@ -6,12 +6,7 @@
 
 # rho = 0.5, Le = 1: exact radiance 2. A box room with a table in it, the
 # camera inside looking at the far wall (its centre is flat wall).
-cat >furnace.pms <<'SCENE'
-camera eye 0 1 2.6  look 0 1 -3  up 0 1 0  fov 50  size 40 30
-material f diffuse albedo 0.5 0.5 0.5 emit 1 1 1
-box f -2 0 -3  2 2.5 3 inward
-box f -0.6 0 -1.6  0.6 0.8 -0.8
-SCENE
+cp "$PM_TOP/tests/scenes/furnace.pms" furnace.pms
 dump=$PM_BIN/../tests/tools/exrstat
 
 pm-render -e path -p 256 -s 3 furnace.pms -o path.exr 2>err.txt

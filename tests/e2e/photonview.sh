@@ -51,12 +51,7 @@ expect_fail "-e photons needs a map" 2 "pm-render: the photons estimate needs a 
 # The furnace (albedo 0.5, emission 1): radiance 2 of which the light that
 # bounced at least once before, reflected, is 0.5 * 1 = 0.5. The splats'
 # expected value per pixel is exactly that.
-cat >furnace.pms <<'SCENE'
-camera eye 0 1 2.6  look 0 1 -3  up 0 1 0  fov 50  size 40 30
-material f diffuse albedo 0.5 0.5 0.5 emit 1 1 1
-box f -2 0 -3  2 2.5 3 inward
-box f -0.6 0 -1.6  0.6 0.8 -0.8
-SCENE
+cp "$PM_TOP/tests/scenes/furnace.pms" furnace.pms
 pm-shoot -q -n 100000 -s 1 furnace.pms | pm-build -q | pm-render -q -e photons furnace.pms - -o fph.exr
 "$stat" fph.exr >f.txt
 num_near "furnace: the photon view averages to the exact 0.5" "$(kv f.txt mean)" 0.5 0.015
