@@ -79,10 +79,10 @@ put(pm_clipper *c, int j, pm_dvec3 v)
 		c->st[j].first_in = in;
 	} else if (in != c->st[j].prev_in) {
 		pm_dvec3 p = c->st[j].prev;
-		put(c, j + 1, in ? crossing(c, j, v, p) : crossing(c, j, p, v));
+		put(c, c->next[j], in ? crossing(c, j, v, p) : crossing(c, j, p, v));
 	}
 	if (in)
-		put(c, j + 1, v);
+		put(c, c->next[j], v);
 	c->st[j].prev = v;
 	c->st[j].prev_in = in;
 	c->st[j].count++;
@@ -98,16 +98,19 @@ close_stage(pm_clipper *c, int j)
 		return;
 	if (c->st[j].count > 0 && c->st[j].prev_in != c->st[j].first_in) {
 		pm_dvec3 p = c->st[j].prev, f = c->st[j].first;
-		put(c, j + 1, c->st[j].prev_in ? crossing(c, j, p, f) : crossing(c, j, f, p));
+		put(c, c->next[j], c->st[j].prev_in ? crossing(c, j, p, f) : crossing(c, j, f, p));
 	}
-	close_stage(c, j + 1);
+	close_stage(c, c->next[j]);
 }
 
 void
 pm_clip_begin(pm_clipper *c, double h)
 {
-	for (int j = 0; j < 6; j++)
+	for (int j = 0; j < 6; j++) {
 		c->st[j].count = 0;
+		c->next[j] = j + 1;
+	}
+	c->first = 0;
 	c->h = h;
 	c->off = !(h > 0) || !isfinite(h);
 	c->nout = 0;
@@ -115,6 +118,22 @@ pm_clip_begin(pm_clipper *c, double h)
 	c->vsum = pm_dv3(0, 0, 0);
 	c->keep = NULL;
 	c->keepcap = 0;
+}
+
+void
+pm_clip_bounds(pm_clipper *c, const double lo[3], const double hi[3])
+{
+	int next = 6;
+
+	/* A stage whose half-space holds the whole box passes every vertex on
+	 * unchanged: the same test as inside(), on the box's extreme. */
+	for (int j = 5; j >= 0; j--) {
+		double t = (j & 1) ? -lo[j >> 1] : hi[j >> 1];
+		c->next[j] = next;
+		if (!(t <= c->h))
+			next = j;
+	}
+	c->first = next;
 }
 
 void
@@ -134,7 +153,7 @@ void
 pm_clip_vertex(pm_clipper *c, pm_dvec3 v)
 {
 	if (!c->off)
-		put(c, 0, v);
+		put(c, c->first, v);
 }
 
 double
@@ -144,7 +163,7 @@ pm_clip_end(pm_clipper *c, pm_dvec3 normal)
 
 	if (c->off)
 		return 0;
-	close_stage(c, 0);
+	close_stage(c, c->first);
 	if (c->nout < 3)
 		return 0;
 	/* The closing term (v_last - o) x (o - o) is zero, so the sum is complete. */

@@ -31,6 +31,7 @@ typedef struct pm_clipper {
 		pm_dvec3 first, prev;
 		int count, first_in, prev_in;
 	} st[6];                   /* one per face plane */
+	int first, next[6];        /* the stages that can cut, in order */
 	pm_dvec3 o, prev, sum;     /* area: first output vertex, last, cross sum */
 	pm_dvec3 vsum;             /* sum of the output vertices */
 	int nout;
@@ -55,6 +56,10 @@ double pm_clip_end(pm_clipper *c, pm_dvec3 normal);
  * inside it when the polygon is convex (0 if nothing was inside). */
 pm_dvec3 pm_clip_middle(const pm_clipper *c);
 
+/* After pm_clip_begin, before the vertices: the polygon's bounding box
+ * (lo, hi per axis, relative to the centre), so that the face planes it
+ * does not cross cost nothing. The result is the same as without. */
+void pm_clip_bounds(pm_clipper *c, const double lo[3], const double hi[3]);
 /* After pm_clip_begin: also copy the clipped polygon's vertices, in order,
  * to buf (room for cap). After pm_clip_end, pm_clip_kept gives their number,
  * or -1 if there were more than cap. */

@@ -26,6 +26,8 @@
 /* Sample points per polygon that something can hide: GRID x GRID cells of
  * its bounding rectangle, those inside it. */
 #define GRID 8
+/* Convex polygons up to this many vertices find their cells inside row by row. */
+#define ROW_MAX_VERTS 32
 /* Two planes at most this far from perpendicular (|N_a . N_b| >= LAYER_COS)
  * are layers: one over the other, not walls meeting at an edge. */
 #define LAYER_COS 0.5
@@ -64,7 +66,9 @@ typedef struct cpoly {
 	int r0, nr;            /* polygons that may hide part of it from x' */
 	int f0, nf;            /* polygons a backward ray from it may meet ... */
 	int nfc;               /* ... the first nfc lying on its plane */
-	int s0, ns;            /* sample points */
+	int s0, ns;            /* sample points kept: the ndyn first, then
+	                          those covered for every direction */
+	int ncell;             /* cells its area was shared among */
 	int unseen;            /* a solid's face turned away from x': not seen */
 	double avis;           /* area seen from x' ... */
 	double aopen;          /* ... of it, not covered by a polygon on its plane */
@@ -93,12 +97,10 @@ struct pm_comp_scratch {
 	int *bl;
 	int nbl, blcap;
 	pm_dvec3 *sp;          /* sample points */
-	double *sw;            /* their areas */
-	unsigned char *sv;     /* seen from x' */
 	pm_dvec3 *ov;          /* pm_overlap_area's scratch */
 	int ovcap;
-	int *sf;               /* fate for every direction (covered), -1 (open
-	                          for every direction) or -2 (depends on it) */
+	int *sf;               /* a covered sample's fate, the same for every
+	                          direction (unused for dynamic ones) */
 	int nsp, spcap;
 	int oom;
 	pm_comp_stats last;
@@ -154,8 +156,6 @@ pm_comp_scratch_free(pm_comp_scratch *sc)
 	free(sc->uv);
 	free(sc->bl);
 	free(sc->sp);
-	free(sc->sw);
-	free(sc->sv);
 	free(sc->sf);
 	free(sc->ov);
 	free(sc);
@@ -194,17 +194,16 @@ grow_samples(pm_comp_scratch *sc, int need)
 	if (!grow((void **)&sc->sp, &cap, sc->nsp, need, sizeof *sc->sp))
 		return 0;
 	cap = sc->spcap;
-	if (!grow((void **)&sc->sw, &cap, sc->nsp, need, sizeof *sc->sw))
-		return 0;
-	cap = sc->spcap;
-	if (!grow((void **)&sc->sv, &cap, sc->nsp, need, sizeof *sc->sv))
-		return 0;
-	cap = sc->spcap;
 	if (!grow((void **)&sc->sf, &cap, sc->nsp, need, sizeof *sc->sf))
 		return 0;
 	sc->spcap = cap;
 	return 1;
 }
+
+/* fmax and fmin, NaN ignored as theirs do, but inlined (libm's are calls
+ * without -ffinite-math-only, and these sit in every inner loop). */
+static inline double dmax(double a, double b) { return a > b || b != b ? a : b; }
+static inline double dmin(double a, double b) { return a < b || b != b ? a : b; }
 
 static double
 comp(pm_dvec3 v, int a)
@@ -244,8 +243,6 @@ visit(void *vctx, uint32_t g)
 		sc->oom = 1;
 		return;
 	}
-	pm_clip_begin(&cl, q->h);
-	pm_clip_keep(&cl, sc->cv + sc->ncv, cap);
 	for (uint32_t v = s->poly_start[g]; v < s->poly_start[g + 1]; v++) {
 		pm_dvec3 r = pm_dsub(pm_dfromf(verts[s->poly_vert[v]]), q->x);
 		double rc[3] = {r.x, r.y, r.z};
@@ -253,7 +250,6 @@ visit(void *vctx, uint32_t g)
 			lo[a] = rc[a] < lo[a] ? rc[a] : lo[a];
 			hi[a] = rc[a] > hi[a] ? rc[a] : hi[a];
 		}
-		pm_clip_vertex(&cl, r);
 	}
 	/* Open cube: a polygon lying in (or beyond) a face plane is where the
 	 * set-aside boundary photons are; it has no area inside. */
@@ -261,6 +257,11 @@ visit(void *vctx, uint32_t g)
 		for (int a = 0; a < 3; a++)
 			if (lo[a] >= q->h - 0.5 * q->tau || hi[a] <= -q->h + 0.5 * q->tau)
 				return;
+	pm_clip_begin(&cl, q->h);
+	pm_clip_bounds(&cl, lo, hi);
+	pm_clip_keep(&cl, sc->cv + sc->ncv, cap);
+	for (uint32_t v = s->poly_start[g]; v < s->poly_start[g + 1]; v++)
+		pm_clip_vertex(&cl, pm_dsub(pm_dfromf(verts[s->poly_vert[v]]), q->x));
 	N = pm_dfromf(s->poly_normal[g]);
 	len = pm_dlen(N);
 	if (!(len > 0))
@@ -290,8 +291,8 @@ visit(void *vctx, uint32_t g)
 	for (int i = 0; i < kept; i++) {
 		pm_dvec3 v = sc->cv[P->v0 + i];
 		for (int a = 0; a < 3; a++) {
-			P->lo[a] = fmin(P->lo[a], comp(v, a));
-			P->hi[a] = fmax(P->hi[a], comp(v, a));
+			P->lo[a] = dmin(P->lo[a], comp(v, a));
+			P->hi[a] = dmax(P->hi[a], comp(v, a));
 		}
 		sc->uv[2 * (P->v0 + i)] = comp(v, (P->ax + 1) % 3);
 		sc->uv[2 * (P->v0 + i) + 1] = comp(v, (P->ax + 2) % 3);
@@ -308,22 +309,27 @@ inside(const pm_comp_scratch *sc, const cpoly *P, pm_dvec3 p, double tol, int ed
 {
 	const double *uv = sc->uv + 2 * P->v0;
 	int u = (P->ax + 1) % 3, w = (P->ax + 2) % 3, in = 0;
-	double pu = comp(p, u), pw = comp(p, w), t2 = tol * tol * P->nax * P->nax;
+	double pu = comp(p, u), pw = comp(p, w), tu = tol * P->nax, t2 = tu * tu;
 
 	if (p.x < P->lo[0] - tol || p.x > P->hi[0] + tol || p.y < P->lo[1] - tol ||
 	    p.y > P->hi[1] + tol || p.z < P->lo[2] - tol || p.z > P->hi[2] + tol)
 		return 0;
 	for (int i = 0, j = P->nv - 1; i < P->nv; j = i++) {
 		double iu = uv[2 * i], iw = uv[2 * i + 1], ju = uv[2 * j], jw = uv[2 * j + 1];
-		double eu = iu - ju, ew = iw - jw, ru = pu - ju, rw = pw - jw;
-		double ee = eu * eu + ew * ew, t = ee > 0 ? (ru * eu + rw * ew) / ee : 0;
+		double eu = iu - ju, ew = iw - jw;
+		if ((iw > pw) != (jw > pw) && pu < eu * (pw - iw) / ew + iu)
+			in = !in;
+		/* Within tu of the edge only inside its box grown by tu. */
+		if (pu < dmin(iu, ju) - tu || pu > dmax(iu, ju) + tu ||
+		    pw < dmin(iw, jw) - tu || pw > dmax(iw, jw) + tu)
+			continue;
+		double ru = pu - ju, rw = pw - jw, ee = eu * eu + ew * ew;
+		double t = ee > 0 ? (ru * eu + rw * ew) / ee : 0;
 		t = t < 0 ? 0 : t > 1 ? 1 : t;
 		ru -= t * eu;
 		rw -= t * ew;
 		if (ru * ru + rw * rw <= t2)
 			return edge_in;
-		if ((iw > pw) != (jw > pw) && pu < eu * (pw - iw) / ew + iu)
-			in = !in;
 	}
 	return in;
 }
@@ -402,8 +408,8 @@ reach(const pm_comp_scratch *sc, const cpoly *P, const cpoly *B, pm_dvec3 psi, d
 			any = 1;
 		v = pm_dadd(v, pm_dscale(psi, t > 0 ? t : 0));
 		for (int a = 0; a < 3; a++) {
-			lo[a] = fmin(lo[a], comp(v, a));
-			hi[a] = fmax(hi[a], comp(v, a));
+			lo[a] = dmin(lo[a], comp(v, a));
+			hi[a] = dmax(hi[a], comp(v, a));
 		}
 	}
 	if (!any)
@@ -614,69 +620,98 @@ sample(pm_comp_scratch *sc, cpoly *P, pm_dvec3 xo, double h, double eps)
 	G = G < 2 ? 2 : G > GRID ? GRID : G;
 	if (P->nr + P->nf > 8 && G > 4)
 		G = 4;
-	if (!grow_samples(sc, G * G))
+	/* Twice G x G: the covered ones wait behind while the rest are sorted. */
+	if (!grow_samples(sc, 2 * G * G))
 		return 0;
 	t1 = fabs(P->N.x) < 0.9 ? pm_dv3(1, 0, 0) : pm_dv3(0, 1, 0);
 	t1 = pm_dsub(t1, pm_dscale(P->N, pm_ddot(t1, P->N)));
 	t1 = pm_dscale(t1, 1 / pm_dlen(t1));
 	t2 = pm_dcross(P->N, t1);
+	double va[ROW_MAX_VERTS], vb[ROW_MAX_VERTS];
+	int rows = P->convex && P->nv <= ROW_MAX_VERTS;
 	for (int i = 0; i < P->nv; i++) {
 		double a = pm_ddot(sc->cv[P->v0 + i], t1), b = pm_ddot(sc->cv[P->v0 + i], t2);
-		lo1 = fmin(lo1, a);
-		hi1 = fmax(hi1, a);
-		lo2 = fmin(lo2, b);
-		hi2 = fmax(hi2, b);
+		lo1 = dmin(lo1, a);
+		hi1 = dmax(hi1, a);
+		lo2 = dmin(lo2, b);
+		hi2 = dmax(hi2, b);
+		if (rows) {
+			va[i] = a;
+			vb[i] = b;
+		}
 	}
 	base = pm_dscale(P->N, P->d);
 	P->s0 = sc->nsp;
-	for (int i = 0; i < G; i++)
+	for (int i = 0; i < G; i++) {
+		double a = lo1 + (hi1 - lo1) * (i + 0.5) / G, blo = INFINITY, bhi = -INFINITY;
+		/* A convex polygon meets the row in one interval. */
+		for (int e = 0, f = P->nv - 1; rows && e < P->nv; f = e++)
+			if ((va[e] - a) * (va[f] - a) <= 0 && va[e] != va[f]) {
+				double b = vb[f] + (a - va[f]) * (vb[e] - vb[f]) / (va[e] - va[f]);
+				blo = dmin(blo, b);
+				bhi = dmax(bhi, b);
+			}
 		for (int j = 0; j < G; j++) {
-			double a = lo1 + (hi1 - lo1) * (i + 0.5) / G;
 			double b = lo2 + (hi2 - lo2) * (j + 0.5) / G;
 			pm_dvec3 p = pm_dadd(base, pm_dadd(pm_dscale(t1, a), pm_dscale(t2, b)));
-			if (inside(sc, P, p, 0, 1))
+			if (rows ? b >= blo && b <= bhi : inside(sc, P, p, 0, 1))
 				sc->sp[P->s0 + kept++] = p;
 		}
+	}
 	if (kept == 0) {
 		pm_dvec3 m = pm_dv3(0, 0, 0);
 		for (int i = 0; i < P->nv; i++)
 			m = pm_dadd(m, sc->cv[P->v0 + i]);
 		sc->sp[P->s0 + kept++] = pm_dscale(m, 1.0 / P->nv);
 	}
-	P->ns = kept;
-	sc->nsp += kept;
+	P->ncell = kept;
 	P->avis = P->aopen = 0;
 	P->ndyn = 0;
 	P->adyn = 0;
+	/* Only samples whose fate is not "open for every direction" cost work
+	 * per photon; they are kept, dynamic ones first. All cells weigh the
+	 * same, so areas are counts times one cell. */
+	double cell = P->A / kept;
+	int nopen = 0, nseen = 0, ncov = 0;
 	for (int i = P->s0; i < P->s0 + kept; i++) {
-		sc->sw[i] = P->A / kept;
-		sc->sv[i] = (unsigned char)seen(sc, P, xo, sc->sp[i], eps);
+		int f = -1;
+		if (!seen(sc, P, xo, sc->sp[i], eps))
+			continue;
+		nseen++;
 		/* Covered by a polygon on P's plane: a backward ray meets it at
 		 * once, whatever its direction. */
-		sc->sf[i] = -1;
-		for (int b = 0; b < P->nfc && sc->sf[i] < 0; b++) {
+		for (int b = 0; b < P->nfc && f < 0; b++) {
 			const cpoly *B = &sc->g[sc->bl[P->f0 + b]];
 			if (inside(sc, B, sc->sp[i], eps, 0))
-				sc->sf[i] = 2 * B->obj + (pm_ddot(B->N, P->Ne) > 0);
+				f = 2 * B->obj + (pm_ddot(B->N, P->Ne) > 0);
 		}
 		/* A layer off P's plane, or a solid P's point lies behind, can
 		 * change the fate with the direction; the front of a solid
 		 * across an edge alone cannot. */
-		for (int b = P->nfc; b < P->nf && sc->sf[i] == -1; b++) {
+		for (int b = P->nfc; b < P->nf && f == -1; b++) {
 			int e = sc->bl[P->f0 + b];
 			const cpoly *B = &sc->g[IDX(e)];
 			if (!(e & MATTER) || pm_ddot(B->N, sc->sp[i]) - B->d < -eps)
-				sc->sf[i] = -2;
+				f = -2;
 		}
-		if (sc->sv[i])
-			P->avis += sc->sw[i];
-		if (sc->sv[i] && sc->sf[i] == -1)
-			P->aopen += sc->sw[i];
-		if (sc->sv[i] && sc->sf[i] == -2) {
-			P->ndyn++;
-			P->adyn += sc->sw[i];
+		if (f == -1)
+			nopen++;
+		else if (f == -2)
+			sc->sp[P->s0 + P->ndyn++] = sc->sp[i];
+		else {
+			sc->sf[P->s0 + G * G + ncov] = f;
+			sc->sp[P->s0 + G * G + ncov++] = sc->sp[i];
 		}
 	}
+	for (int i = 0; i < ncov; i++) {
+		sc->sf[P->s0 + P->ndyn + i] = sc->sf[P->s0 + G * G + i];
+		sc->sp[P->s0 + P->ndyn + i] = sc->sp[P->s0 + G * G + i];
+	}
+	P->ns = P->ndyn + ncov;
+	sc->nsp += P->ns;
+	P->avis = cell * nseen;
+	P->aopen = cell * nopen;
+	P->adyn = cell * P->ndyn;
 	return 1;
 }
 
@@ -687,7 +722,7 @@ facing(const cpoly *P, pm_dvec3 psi, double c, pm_dvec3 n)
 {
 	if (P->xpar)
 		return pm_ddot(P->Ne, n) > 0 ? c : 0;
-	return fmax(0, pm_ddot(psi, P->Ne));
+	return dmax(0, pm_ddot(psi, P->Ne));
 }
 
 void
@@ -714,10 +749,10 @@ pm_comp_weights(const pm_polyindex *pi, pm_vec3 x, pm_vec3 n,
 	/* L-infinity distances, exact in double (a difference of floats). */
 	for (int i = 0; i < m; i++) {
 		pm_dvec3 r = pm_dsub(pm_dfromf(pos[i]), xd);
-		double d = fmax(fabs(r.x), fmax(fabs(r.y), fabs(r.z)));
+		double d = dmax(fabs(r.x), dmax(fabs(r.y), fabs(r.z)));
 		sc->d[i] = isfinite(d) ? d : -1;    /* -1: not used */
 		if (d >= 0 && isfinite(d)) {
-			hk = fmax(hk, d);
+			hk = dmax(hk, d);
 			valid++;
 		}
 	}
@@ -744,7 +779,7 @@ pm_comp_weights(const pm_polyindex *pi, pm_vec3 x, pm_vec3 n,
 	}
 	if (complete || inner == 0) {
 		z.closed = 1;
-		h = fmax(hk + tau, PM_COMP_HMIN_REL * pi->extent);
+		h = dmax(hk + tau, PM_COMP_HMIN_REL * pi->extent);
 	} else {
 		h = hs;
 		z.shell = valid - inner;
@@ -788,9 +823,9 @@ pm_comp_weights(const pm_polyindex *pi, pm_vec3 x, pm_vec3 n,
 	if (sc->oom)
 		goto out;
 	/* Beyond float rounding of the vertices, which grows with |x|. */
-	mx = fmax(fabs(xd.x), fmax(fabs(xd.y), fabs(xd.z)));
+	mx = dmax(fabs(xd.x), dmax(fabs(xd.y), fabs(xd.z)));
 	eps = 1e-4 * h + 8 * FLT_EPSILON * mx;
-	xo = pm_dscale(nd, fmax(XOFF_REL * h, 4 * eps));
+	xo = pm_dscale(nd, dmax(XOFF_REL * h, 4 * eps));
 
 	for (int a = 0; a < sc->ng; a++) {
 		cpoly *P = &sc->g[a];
@@ -900,23 +935,20 @@ pm_comp_weights(const pm_polyindex *pi, pm_vec3 x, pm_vec3 n,
 					ov = pm_overlap_area(sc->cv + B->v0, B->nv, sc->cv + P->v0, P->nv, P->N, psi, sc->ov);
 				}
 				s = sc->fx[j] < 0 ? P->A - ov : sc->fx[j] == fb ? ov : 0;
-				A += f * fmax(0, s);
+				A += f * dmax(0, s);
 				continue;
 			}
-			for (int t = P->s0; t < P->s0 + P->ns; t++) {
-				int ft = sc->sf[t];
-				if (!sc->sv[t])
-					continue;
-				if (ft == -2)
-					ft = nc > 0 ? fate(sc, cand, nc, sc->sp[t], psi, eps) : -1;
-				if (ft == sc->fx[j])
-					s += sc->sw[t];
-			}
+			int hit = 0;
+			for (int t = P->s0; t < P->s0 + P->ndyn && nc > 0; t++)
+				hit += fate(sc, cand, nc, sc->sp[t], psi, eps) == sc->fx[j];
+			for (int t = P->s0 + P->ndyn; t < P->s0 + P->ns; t++)
+				hit += sc->sf[t] == sc->fx[j];
+			s = (sc->fx[j] < 0 ? P->aopen + (nc > 0 ? 0 : P->adyn) : 0) + hit * (P->A / P->ncell);
 			A += f * s;
 		}
 		/* The photon's own spot is exposed: never less than its cell. */
 		const cpoly *O = &sc->g[own];
-		A = fmax(A, facing(O, psi, c, nd) * O->A / (O->ns > 0 ? O->ns : GRID * GRID));
+		A = dmax(A, facing(O, psi, c, nd) * O->A / (O->ncell > 0 ? O->ncell : GRID * GRID));
 		if (A > thr * c)
 			w[sc->act[j]] = c / A;
 		else
