@@ -45,12 +45,11 @@ png_quiet(png_structp png, png_const_charp msg)
 
 int
 pm_png_write(const char *path, int width, int height, const float *const rgb[3],
-             double ev, pm_error *err)
+             const pm_tone *tone, pm_error *err)
 {
 	png_structp png;
 	png_infop info = NULL;
 	unsigned char *row;
-	double scale = exp2(ev);
 	pm_out out;
 
 	if (width < 1 || height < 1 || width > (1 << 24) || height > (1 << 24))
@@ -83,7 +82,7 @@ pm_png_write(const char *path, int width, int height, const float *const rgb[3],
 	for (int y = 0; y < height; y++) {
 		for (int x = 0; x < width; x++)
 			for (int k = 0; k < 3; k++)
-				row[3 * x + k] = pm_srgb8(rgb[k][(size_t)y * width + x] * scale);
+				row[3 * x + k] = pm_srgb8(pm_tone_apply(tone, rgb[k][(size_t)y * width + x]));
 		png_write_row(png, row);
 	}
 	png_write_end(png, info);

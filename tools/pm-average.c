@@ -78,6 +78,10 @@ main(int argc, char **argv)
 	if (!outpath && !stats)
 		usage_err(usage, "nothing to do: give -o OUT.exr or --stats");
 
+	if (outpath)
+		check_output(usage, outpath, OUT_EXR, argv + optind, argc - optind);
+	else
+		check_stdin_once(usage, argv + optind, argc - optind);
 	pm_avg_init(&avg);
 	progress_start(&bar, "images", (uint64_t)(argc - optind), quiet);
 	for (int i = optind; i < argc; i++) {

@@ -4,6 +4,7 @@
 #include <getopt.h>
 #include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
 
 #include "compare.h"
 #include "image.h"
@@ -100,6 +101,15 @@ main(int argc, char **argv)
 		usage_err(usage, "--layer: empty name");
 	if (argc - optind != 2)
 		usage_err(usage, "want two images, got %d", argc - optind);
+	if (errpath && strcmp(errpath, "-") == 0)
+		usage_err(usage, "-o -: the statistics go to stdout; give the error map a file name");
+	{
+		char *in[3] = { argv[optind], argv[optind + 1], (char *)(maskpath ? maskpath : "") };
+		if (errpath)
+			check_output(usage, errpath, OUT_EXR, in, 3);
+		else
+			check_stdin_once(usage, in, 3);
+	}
 	load(&a, argv[optind], layer, pa);
 	load(&b, argv[optind + 1], layer, pb);
 	if (a.width != b.width || a.height != b.height)

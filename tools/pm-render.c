@@ -131,6 +131,7 @@ main(int argc, char **argv)
 	if (o.spp > max_spp)
 		usage_err(usage, "-p: %d is more than %d samples per pixel (a typo? --max-samples raises the limit)",
 		          o.spp, max_spp);
+	check_output(usage, out, OUT_EXR, argv + optind, argc - optind);
 	pm_pass_apply(pass_i, pass_n, &o.seed, &have_seed, &time, &have_time);
 	set_threads(threads);
 
