@@ -53,6 +53,7 @@ main(int argc, char **argv)
 		{ NULL, 0, NULL, 0 },
 	};
 	const char *outpath = NULL, *first = NULL;
+	char firstnm[300];
 	char *value[NAGREED] = { NULL };
 	int agree[NAGREED];
 	int force = 0, quiet = 0, stats = 0, opt, ndropped = 0;
@@ -85,15 +86,17 @@ main(int argc, char **argv)
 	pm_avg_init(&avg);
 	progress_start(&bar, "images", (uint64_t)(argc - optind), quiet);
 	for (int i = optind; i < argc; i++) {
-		const char *path = argv[i];
+		char nm[300];
+		/* Messages show stdin for -, a quoted name otherwise. */
+		const char *path = shown_name(argv[i], nm, sizeof nm);
 		double passes;
 
-		if (pm_image_read_exr(&img, path, &err))
+		if (pm_image_read_exr(&img, argv[i], &err))
 			die_err(&err);
 		if (pm_image_passes(&img, &passes, &err))
-			die("'%s': %s", path, err.msg);
+			die("%s: %s", path, err.msg);
 		if (!first) {
-			first = path;
+			first = strcpy(firstnm, path);
 			/* Later inputs can only drop channels this one has. */
 			if (!(dropped = calloc(img.nchan, sizeof *dropped)))
 				die("out of memory");
@@ -105,14 +108,14 @@ main(int argc, char **argv)
 		} else {
 			const char *hash = pm_image_attr(&img, "pm.scene_hash");
 			if (img.width != avg.width || img.height != avg.height)
-				die("'%s': size %dx%d differs from '%s' (%dx%d)", path,
+				die("%s: size %dx%d differs from %s (%dx%d)", path,
 				    img.width, img.height, first, avg.width, avg.height);
 			if (!same(hash, value[0])) {
 				if (!force)
-					die("'%s': scene hash %s differs from '%s' (%s)", path,
+					die("%s: scene hash %s differs from %s (%s)", path,
 					    hash ? hash : "(none)", first, value[0] ? value[0] : "(none)");
 				if (!quiet && agree[0])
-					warn("'%s': scene hash %s differs from '%s' (%s); averaging anyway",
+					warn("%s: scene hash %s differs from %s (%s); averaging anyway",
 					     path, hash ? hash : "(none)", first, value[0] ? value[0] : "(none)");
 			}
 			for (int k = 0; k < NAGREED; k++)
@@ -123,9 +126,9 @@ main(int argc, char **argv)
 					snprintf(dropped[ndropped++], PM_CHAN_NAME, "%s", avg.chan[c]);
 		}
 		if (pm_avg_add(&avg, &img, passes, &err))
-			die("'%s': %s", path, err.msg);
+			die("%s: %s", path, err.msg);
 		for (int c = 0; c < ndropped && !quiet; c++)
-			warn("'%s': no channel '%s'; it is left out of the average", path, dropped[c]);
+			warn("%s: no channel '%s'; it is left out of the average", path, dropped[c]);
 		ndropped = 0;
 		pm_image_free(&img);
 		progress_update(&bar, (uint64_t)(i - optind + 1));

@@ -16,7 +16,7 @@
 #include "util.h"
 
 static const char usage[] =
-	"pm-tonemap [-ah] [-c CURVE] [-e EV|auto] [-l NAME] [-w WHITE] -o OUT.png IN.exr|- [IN.exr ...]";
+	"pm-tonemap [-ahq] [-c CURVE] [-e EV|auto] [-l NAME] [-w WHITE] -o OUT.png IN.exr|- [IN.exr ...]";
 
 #define GAP 4   /* black columns between images set side by side */
 
@@ -27,16 +27,18 @@ help(void)
 	       "Several inputs of the same height are shown side by side, %d pixels apart,\n"
 	       "under one exposure. An input - is an EXR read from stdin.\n"
 	       "  -a, --abs           show absolute values (for signed images like pm-diff -o)\n"
-	       "  -c, --curve CURVE   tone curve after the exposure: clamp (values at or\n"
-	       "                      above 1 are white) or reinhard (highlights compressed,\n"
-	       "                      white only from --white on) (default: clamp)\n"
-	       "  -e, --exposure EV   multiply by 2^EV before the curve; auto maps the\n"
-	       "                      log-average luminance to middle grey (%.2f) and prints\n"
-	       "                      the EV it chose on stderr (default: 0)\n"
+	       "  -c, --curve CURVE   tone curve after the exposure: reinhard (highlights\n"
+	       "                      compressed, white only from --white on) or clamp\n"
+	       "                      (values at or above 1 are white) (default: reinhard)\n"
+	       "  -e, --exposure EV   multiply by 2^EV before the curve, or auto: map the\n"
+	       "                      log-average luminance to middle grey (%.2f) and print\n"
+	       "                      the EV chosen on stderr, to give back as -e EV\n"
+	       "                      (default: auto)\n"
 	       "  -h, --help          print this help and exit\n"
 	       "  -l, --layer NAME    show NAME.R, NAME.G, NAME.B (or the single channel NAME\n"
 	       "                      as grey) (default: the beauty R, G, B)\n"
 	       "  -o, --output F      the PNG to write; - for stdout (required)\n"
+	       "  -q, --quiet         do not print the auto exposure (default: print it)\n"
 	       "  -w, --white WHITE   reinhard's white point, in exposed units (default: 4)\n",
 	       usage, GAP, PM_AUTO_KEY);
 }
@@ -83,18 +85,24 @@ main(int argc, char **argv)
 		{ "help", no_argument, NULL, 'h' },
 		{ "layer", required_argument, NULL, 'l' },
 		{ "output", required_argument, NULL, 'o' },
+		{ "quiet", no_argument, NULL, 'q' },
 		{ "white", required_argument, NULL, 'w' },
 		{ NULL, 0, NULL, 0 },
 	};
 	const char *layer = NULL, *outpath = NULL;
-	pm_tone tone = { .ev = 0, .curve = PM_CURVE_CLAMP, .white = 4 };
+	/* Auto exposure and a curve that keeps highlights by default, so that
+	 * a scene lit by 2 W or by 5000 W previews alike, and lamps and the
+	 * ceiling around them keep their detail. */
+	pm_tone tone = { .ev = 0, .curve = PM_CURVE_REINHARD, .white = 4 };
 	shown *in;
 	float *side[3];
 	pm_error err;
-	int opt, absval = 0, autoev = 0, curve, n, w = 0, h = 0, x0 = 0;
+	double logavg = 0;
+	size_t used = 0;
+	int opt, absval = 0, autoev = 1, quiet = 0, curve, n, w = 0, h = 0, x0 = 0;
 
 	util_init(argc, argv);
-	while ((opt = getopt_long(argc, argv, ":ac:e:hl:o:w:", longopts, NULL)) != -1) {
+	while ((opt = getopt_long(argc, argv, ":ac:e:hl:o:qw:", longopts, NULL)) != -1) {
 		switch (opt) {
 		case 'a': absval = 1; break;
 		case 'c':
@@ -110,6 +118,7 @@ main(int argc, char **argv)
 		case 'h': help(); return 0;
 		case 'l': layer = optarg; break;
 		case 'o': outpath = optarg; break;
+		case 'q': quiet = 1; break;
 		case 'w': tone.white = parse_real(optarg, 1e-6, 1e30, "--white", usage); break;
 		default: bad_option(usage, opt, argv);
 		}
@@ -146,17 +155,17 @@ main(int argc, char **argv)
 		x0 += in[i].w + GAP;
 	}
 	free(in);
-	if (autoev) {
-		double logavg;
-		/* The gaps are black and so left out, like any black pixel. */
-		if (pm_auto_exposure((const float *const *)side, (size_t)w * h, &tone.ev, &logavg))
-			warn("exposure %+.2f EV (auto: log-average luminance %.4g to %.2f)",
-			     tone.ev, logavg, PM_AUTO_KEY);
-		else
-			warn("exposure %+.2f EV (auto: the image is black)", tone.ev);
-	}
+	/* The gaps are black and so left out, like any black pixel. */
+	if (autoev)
+		used = pm_auto_exposure((const float *const *)side, (size_t)w * h, &tone.ev, &logavg);
 	if (pm_png_write(outpath, w, h, (const float *const *)side, &tone, &err))
 		die_err(&err);
+	/* Only once the PNG is written, so a failed run says one thing. */
+	if (autoev && !quiet && used)
+		warn("exposure %+.2f EV (auto: log-average luminance %.4g to %.2f)",
+		     tone.ev, logavg, PM_AUTO_KEY);
+	else if (autoev && !quiet)
+		warn("exposure %+.2f EV (auto: the image is black)", tone.ev);
 	for (int c = 0; c < 3; c++)
 		free(side[c]);
 	return 0;
