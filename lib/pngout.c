@@ -43,9 +43,9 @@ png_quiet(png_structp png, png_const_charp msg)
 	(void)msg;
 }
 
-int
-pm_png_write(const char *path, int width, int height, const float *const rgb[3],
-             const pm_tone *tone, pm_error *err)
+static int
+write_png(const char *path, int width, int height, const float *const rgb[3],
+          const pm_tone *tone, pm_error *err)
 {
 	png_structp png;
 	png_infop info = NULL;
@@ -93,4 +93,14 @@ fail:
 	free(row);
 	pm_out_abort(&out);
 	return -1;
+}
+
+int
+pm_png_write(const char *path, int width, int height, const float *const rgb[3],
+             const pm_tone *tone, pm_error *err)
+{
+	static const pm_tone linear = { .ev = 0, .curve = PM_CURVE_CLAMP, .white = 1 };
+
+	/* Resolved here, not after write_png's setjmp. */
+	return write_png(path, width, height, rgb, tone ? tone : &linear, err);
 }

@@ -13,7 +13,8 @@ unsigned char pm_srgb8(double linear);
 
 /* Writes a width x height RGB PNG atomically (see atomic.h; "-" is stdout):
  * pixel (x, y) of channel k is pm_srgb8(pm_tone_apply(tone,
- * rgb[k][y * width + x])). Row 0 is the top row. */
+ * rgb[k][y * width + x])); a NULL tone is EV 0 and clamp. Row 0 is the
+ * top row. */
 int pm_png_write(const char *path, int width, int height, const float *const rgb[3],
                  const pm_tone *tone, pm_error *err);
 

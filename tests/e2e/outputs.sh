@@ -64,3 +64,14 @@ echo junk | expect_fail "average: a foreign stdin named stdin" 1 "^pm-average: s
 "$T/mkimg" -v 1,1,1 small.exr 2 2
 expect_fail "average: sizes name stdin" 1 "^pm-average: stdin: size 2x2 differs from 'a.exr' (4x3)$" sh -c 'pm-average a.exr - -o t.exr <small.exr'
 check "nothing written after failures" test ! -e t.exr
+
+# Binary outputs to a terminal (a pty from script(1)) are refused.
+if command -v script >/dev/null 2>&1; then
+	script -qec "pm-render -q s.pms map.pm -o -; echo rc=\$?" /dev/null </dev/null >tty.out
+	check "render -o - to a terminal refused" grep -q "pm-render: refusing to write an OpenEXR image to a terminal: use -o FILE or a pipe" tty.out
+	check "render -o - to a terminal exits 1" grep -q "rc=1" tty.out
+	script -qec "pm-tonemap a.exr -o -; echo rc=\$?" /dev/null </dev/null >tty.out
+	check "tonemap -o - to a terminal refused" grep -q "pm-tonemap: refusing to write a PNG image to a terminal" tty.out
+else
+	ok "script(1) missing: terminal checks skipped"
+fi

@@ -58,6 +58,15 @@ TEST(png_round_trip)
 		    buf[3 * i + 2] != (i % W == 0 ? 255 : 0))
 			bad++;
 	CHECKF(bad == 0, "%d wrong pixels", bad);
+	/* No tone: EV 0 and clamp, so 0.5 -> 188 and 2 -> 255. */
+	CHECKF(pm_png_write("t.png", W, H, rgb, NULL, &err) == 0, "%s", err.msg);
+	memset(&im, 0, sizeof im);
+	im.version = PNG_IMAGE_VERSION;
+	im.format = PNG_FORMAT_RGB;
+	CHECK(png_image_begin_read_from_file(&im, "t.png"));
+	im.format = PNG_FORMAT_RGB;
+	CHECK(png_image_finish_read(&im, NULL, buf, 0, NULL));
+	CHECKF(buf[1] == 188 && buf[2] == 255, "%d %d", buf[1], buf[2]);
 	CHECK(pm_png_write("no/such/dir/t.png", W, H, rgb, &(pm_tone){ 0 }, &err) == -1 &&
 	      strstr(err.msg, "'no/such/dir/t.png'"));
 }
