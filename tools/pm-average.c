@@ -20,12 +20,13 @@ help(void)
 	printf("usage: %s\n"
 	       "  -f, --force     average despite differing pm.scene_hash (default: refuse)\n"
 	       "  -h, --help      print this help and exit\n"
-	       "  -o, --output F  write the average to the EXR file F (default: none)\n"
+	       "  -o, --output F  write the average to the EXR file F, - for stdout\n"
+	       "                  (default: none)\n"
 	       "  -q, --quiet     no warnings, no progress bar (default: warn about\n"
 	       "                  dropped layers and forced mismatches; a progress bar\n"
 	       "                  when stderr is a terminal)\n"
 	       "  -s, --stats     print passes, mean_stderr and mean to stdout (default: off)\n"
-	       "At least one of -o and -s is needed.\n", usage);
+	       "At least one of -o and -s is needed. An IMAGE - is an EXR read from stdin.\n", usage);
 }
 
 /* Attributes copied to the output when every input has the same value (or
@@ -79,6 +80,8 @@ main(int argc, char **argv)
 	if (!outpath && !stats)
 		usage_err(usage, "nothing to do: give -o OUT.exr or --stats");
 
+	if (outpath && stats && strcmp(outpath, "-") == 0)
+		usage_err(usage, "-o - with --stats: both would go to stdout; give the average a file name");
 	if (outpath)
 		check_output(usage, outpath, OUT_EXR, argv + optind, argc - optind);
 	else

@@ -24,7 +24,8 @@ help(void)
 	       "                   !C selects pixels where C <= 0.5 instead (default: R)\n"
 	       "  -o, --output ERR.exr  also write the relative error map (A - B) / B per\n"
 	       "                   channel (A - B where B = 0) as R, G, B (default: none)\n"
-	       "Prints rmse, relmse, mae, max_abs, mean_a, mean_b, pixels; B is the reference.\n",
+	       "Prints rmse, relmse, mae, max_abs, mean_a, mean_b, pixels; B is the reference.\n"
+	       "One of A, B and M may be -, an EXR read from stdin.\n",
 	       usage);
 }
 
@@ -107,11 +108,11 @@ main(int argc, char **argv)
 	if (errpath && strcmp(errpath, "-") == 0)
 		usage_err(usage, "-o -: the statistics go to stdout; give the error map a file name");
 	{
-		char *in[3] = { argv[optind], argv[optind + 1], (char *)(maskpath ? maskpath : "") };
+		char *in[3] = { argv[optind], argv[optind + 1], (char *)maskpath };
 		if (errpath)
-			check_output(usage, errpath, OUT_EXR, in, 3);
+			check_output(usage, errpath, OUT_EXR, in, maskpath ? 3 : 2);
 		else
-			check_stdin_once(usage, in, 3);
+			check_stdin_once(usage, in, maskpath ? 3 : 2);
 	}
 	load(&a, argv[optind], layer, pa);
 	load(&b, argv[optind + 1], layer, pb);

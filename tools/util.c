@@ -302,11 +302,13 @@ check_output(const char *usage, const char *out, enum out_kind kind, char *const
 				          kind_name[known_ext[e].kind], argv0, kind_name[kind], kind_ext[kind]);
 	have_out = stat(out, &so) == 0;
 	for (int i = 0; i < n; i++) {
-		if (strcmp(inputs[i], "-") == 0)
-			continue;
-		if (have_out ? stat(inputs[i], &si) == 0 && si.st_dev == so.st_dev && si.st_ino == so.st_ino
-		             : strcmp(inputs[i], out) == 0)
-			usage_err(usage, "'%s' is also an input: writing it would destroy it (choose another output)", out);
+		/* stdin counts too when it is the output file redirected. */
+		int in = strcmp(inputs[i], "-") == 0;
+		if (have_out ? (in ? fstat(STDIN_FILENO, &si) : stat(inputs[i], &si)) == 0 &&
+		               S_ISREG(si.st_mode) && si.st_dev == so.st_dev && si.st_ino == so.st_ino
+		             : !in && strcmp(inputs[i], out) == 0)
+			usage_err(usage, "'%s' is also an input%s: writing it would destroy it (choose another output)",
+			          out, in ? " (as stdin)" : "");
 	}
 }
 

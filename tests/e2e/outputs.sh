@@ -75,3 +75,8 @@ if command -v script >/dev/null 2>&1; then
 else
 	ok "script(1) missing: terminal checks skipped"
 fi
+
+# Later additions: stdin redirected from the output, stdout wanted twice.
+expect_fail "the output as stdin refused" 2 "^pm-average: 'a.exr' is also an input (as stdin)" sh -c 'pm-average - b.exr -o a.exr <a.exr'
+expect_fail "average: -o - with --stats refused" 2 "^pm-average: -o - with --stats: both would go to stdout" pm-average -s a.exr -o -
+check "inputs still untouched" cmp -s a.exr keep.exr
