@@ -45,11 +45,13 @@ while [ "$r" -le "$ROUNDS" ]; do
 		"$bin/pm-render" -q -j 1 -e "$EST" -k "$K" -p "$SPP" -P {}/"$n" "$scene" - -o "$dir/pass-{}.exr"'
 	"$bin/pm-average" -q $(seq -f "$dir/pass-%g.exr" 1 "$n") -o "$out/round-$r.exr"
 	if [ -e "$out/image.exr" ]; then
-		"$bin/pm-average" -q "$out/image.exr" "$out/round-$r.exr" -o "$out/image.exr"
+		# pm-average refuses to write over an input: a new file, then a rename.
+		"$bin/pm-average" -q "$out/image.exr" "$out/round-$r.exr" -o "$out/image-next.exr"
+		mv "$out/image-next.exr" "$out/image.exr"
 	else
 		cp "$out/round-$r.exr" "$out/image.exr"
 	fi
-	"$bin/pm-tonemap" "$out/image.exr" -o "$out/round-$r.png"
+	"$bin/pm-tonemap" -q "$out/image.exr" -o "$out/round-$r.png"
 	cp "$out/round-$r.png" "$out/image.png"
 	stats=$("$bin/pm-average" --stats "$out/image.exr")
 	line=$(echo "$stats" | awk -v r="$r" '

@@ -41,8 +41,13 @@ pm_out_open(pm_out *o, const char *path, pm_error *err)
 	/* A device or a FIFO (/dev/null, /dev/stdout, a named pipe) is
 	 * written in place: renaming a file over it would replace the
 	 * device node, not write to it. Errors are still checked at commit. */
+	/* Renaming over a directory would fail only at commit, with a
+	 * message (ENOTDIR, EBUSY) that does not say what is wrong. */
 	struct stat st;
-	if (stat(path, &st) == 0 && !S_ISREG(st.st_mode) && !S_ISDIR(st.st_mode)) {
+	int found = stat(path, &st) == 0;
+	if ((found && S_ISDIR(st.st_mode)) || (*path && path[strlen(path) - 1] == '/'))
+		return pm_seterr(err, "cannot write '%s': that names a directory, not a file", path);
+	if (found && !S_ISREG(st.st_mode)) {
 		o->f = fopen(path, "wb");
 		if (!o->f)
 			return pm_seterr(err, "cannot open '%s': %s", path, strerror(errno));

@@ -7,7 +7,8 @@
  * commit leaves no partial file (with O_TMPFILE not even a temporary one).
  * Path "-" means stdout: written directly, errors still checked at commit.
  * So is a path naming an existing device or FIFO (/dev/null, /dev/full, a
- * named pipe): renaming over it would replace the device node.
+ * named pipe): renaming over it would replace the device node. A path
+ * naming a directory (or ending in '/') is refused at open.
  *
  * Every temporary name contains PM_TMP_MARK (".NAME.pm-tmp-XXXXXX", or
  * ".pm-tmp-PID.N" for the moment between naming an O_TMPFILE and renaming

@@ -5,7 +5,9 @@
  * copies that buffer to a pm_out, so the file appears atomically (and "-"
  * works, although EXR's offset table needs seeking). Reading goes through a
  * pread-based read_fn so that open errors carry errno and every library
- * message is caught by our handler instead of being printed. */
+ * message is caught by our handler instead of being printed; stdin or any
+ * other input that cannot seek (a pipe) is read into memory first, for the
+ * same reason writing goes through memory. */
 #include "image.h"
 
 #include <errno.h>
@@ -290,6 +292,63 @@ fd_read(exr_const_context_t ctx, void *ud, void *dst, uint64_t sz, uint64_t off,
 	return (int64_t)got;
 }
 
+/* A pipe cannot be read at offsets, so it is read whole first. */
+static int64_t
+mem_read(exr_const_context_t ctx, void *ud, void *dst, uint64_t sz, uint64_t off,
+         exr_stream_error_func_ptr_t ecb)
+{
+	stream *s = ud;
+
+	(void)ctx;
+	(void)ecb;
+	if (off >= s->len)
+		return 0;
+	if (sz > s->len - off)
+		sz = s->len - off;
+	memcpy(dst, s->buf + off, sz);
+	return (int64_t)sz;
+}
+
+static int64_t
+mem_size(exr_const_context_t ctx, void *ud)
+{
+	(void)ctx;
+	return (int64_t)((stream *)ud)->len;
+}
+
+/* Reads all of s->fd into s->buf, up to a bound on what an image pm reads
+ * can take: every sample as an uncompressed float, plus room for headers
+ * and offset tables. */
+static int
+slurp(stream *s, const char *name, pm_error *err)
+{
+	const size_t most = (size_t)MAX_SAMPLES * 4 + ((size_t)1 << 26);
+
+	for (;;) {
+		ssize_t n;
+		if (s->len > most)
+			return pm_seterr(err, "%s: more than %zu bytes: too big for an image", name, most);
+		if (s->len == s->cap) {
+			size_t cap = s->cap ? s->cap * 2 : 1 << 16;
+			unsigned char *b;
+			if (cap > most + 1)
+				cap = most + 1;
+			if (!(b = realloc(s->buf, cap)))
+				return pm_seterr(err, "%s: out of memory reading it", name);
+			s->buf = b;
+			s->cap = cap;
+		}
+		n = read(s->fd, s->buf + s->len, s->cap - s->len);
+		if (n < 0 && errno == EINTR)
+			continue;
+		if (n < 0)
+			return pm_seterr(err, "cannot read %s: %s", name, strerror(errno));
+		if (n == 0)
+			return 0;
+		s->len += (size_t)n;
+	}
+}
+
 static int64_t
 fd_size(exr_const_context_t ctx, void *ud)
 {
@@ -564,81 +623,97 @@ pm_image_read_exr(pm_image *img, const char *path, pm_error *err)
 	unsigned char head[4];
 	stream s = { .fd = -1 };
 	int64_t w, h;
-	int nparts;
+	int nparts, piped;
+	struct stat st;
+	char nm[300];
 
 	memset(img, 0, sizeof *img);
-	s.fd = open(path, O_RDONLY | O_CLOEXEC);
+	if (strcmp(path, "-") == 0) {
+		snprintf(nm, sizeof nm, "stdin");
+		s.fd = STDIN_FILENO;
+	} else {
+		snprintf(nm, sizeof nm, "'%.280s'", path);
+		s.fd = open(path, O_RDONLY | O_CLOEXEC);
+	}
 	if (s.fd < 0)
-		return pm_seterr(err, "cannot open '%s': %s", path, strerror(errno));
-	if (fd_read(NULL, &s, head, 4, 0, NULL) != 4 || memcmp(head, magic, 4) != 0) {
-		close(s.fd);
-		return pm_seterr(err, "'%s': not an OpenEXR file", path);
+		return pm_seterr(err, "cannot open %s: %s", nm, strerror(errno));
+	/* stdin, a FIFO, <(...): anything but a file is read whole first. */
+	piped = fstat(s.fd, &st) != 0 || !S_ISREG(st.st_mode);
+	if (piped && slurp(&s, nm, err))
+		goto fail;
+	if ((piped ? mem_read : fd_read)(NULL, &s, head, 4, 0, NULL) != 4 || memcmp(head, magic, 4) != 0) {
+		pm_seterr(err, "%s: not an OpenEXR file", nm);
+		goto fail;
 	}
 	init.user_data = &s;
-	init.read_fn = fd_read;
-	init.size_fn = fd_size;
+	init.read_fn = piped ? mem_read : fd_read;
+	init.size_fn = piped ? mem_size : fd_size;
 	init.error_handler_fn = on_error;
 	init.flags = EXR_CONTEXT_FLAG_DISABLE_CHUNK_RECONSTRUCTION;
 	rv = exr_start_read(&ctx, path, &init);
 	if (rv != EXR_ERR_SUCCESS) {
-		pm_seterr(err, "'%s': bad OpenEXR header: %s", path, exr_why(&s, rv));
+		pm_seterr(err, "%s: bad OpenEXR header: %s", nm, exr_why(&s, rv));
 		goto fail;
 	}
 	if (exr_get_count(ctx, &nparts) != EXR_ERR_SUCCESS || nparts < 1 ||
 	    exr_get_storage(ctx, 0, &storage) != EXR_ERR_SUCCESS ||
 	    exr_get_data_window(ctx, 0, &dw) != EXR_ERR_SUCCESS ||
 	    exr_get_channels(ctx, 0, &cl) != EXR_ERR_SUCCESS || !cl) {
-		pm_seterr(err, "'%s': bad OpenEXR header: %s", path, exr_why(&s, EXR_ERR_MISSING_REQ_ATTR));
+		pm_seterr(err, "%s: bad OpenEXR header: %s", nm, exr_why(&s, EXR_ERR_MISSING_REQ_ATTR));
 		goto fail;
 	}
 	if (storage != EXR_STORAGE_SCANLINE && storage != EXR_STORAGE_TILED) {
-		pm_seterr(err, "'%s': deep OpenEXR images are not supported", path);
+		pm_seterr(err, "%s: deep OpenEXR images are not supported", nm);
 		goto fail;
 	}
 	w = (int64_t)dw.max.x - dw.min.x + 1;
 	h = (int64_t)dw.max.y - dw.min.y + 1;
 	if (cl->num_channels < 1) {
-		pm_seterr(err, "'%s': image has no channels", path);
+		pm_seterr(err, "%s: image has no channels", nm);
 		goto fail;
 	}
 	if (check_size(w, h, cl->num_channels, err)) {
-		pm_preferr(err, "'%s'", path);
+		pm_preferr(err, "%s", nm);
 		goto fail;
 	}
 	for (int c = 0; c < cl->num_channels; c++) {
 		const exr_attr_chlist_entry_t *e = &cl->entries[c];
 		names[c] = e->name.str;
 		if (check_name(e->name.str, err)) {
-			pm_preferr(err, "'%s'", path);
+			pm_preferr(err, "%s", nm);
 			goto fail;
 		}
 		if (e->x_sampling != 1 || e->y_sampling != 1) {
-			pm_seterr(err, "'%s': channel '%s' is subsampled (%dx%d), which is not supported",
-			          path, e->name.str, e->x_sampling, e->y_sampling);
+			pm_seterr(err, "%s: channel '%s' is subsampled (%dx%d), which is not supported",
+			          nm, e->name.str, e->x_sampling, e->y_sampling);
 			goto fail;
 		}
 		if (e->pixel_type != EXR_PIXEL_UINT && e->pixel_type != EXR_PIXEL_HALF &&
 		    e->pixel_type != EXR_PIXEL_FLOAT) {
-			pm_seterr(err, "'%s': channel '%s' has %s pixels", path, e->name.str,
+			pm_seterr(err, "%s: channel '%s' has %s pixels", nm, e->name.str,
 			          type_name(e->pixel_type));
 			goto fail;
 		}
 	}
 	if (pm_image_init(img, (int)w, (int)h, cl->num_channels, names, err)) {
-		pm_preferr(err, "'%s'", path);
+		pm_preferr(err, "%s", nm);
 		goto fail;
 	}
 	if (read_attrs(ctx, img, err) || read_pixels(ctx, storage, &dw, img, &s, err)) {
-		pm_preferr(err, "'%s'", path);
+		pm_preferr(err, "%s", nm);
 		goto fail;
 	}
 	exr_finish(&ctx);
-	close(s.fd);
+	if (s.fd != STDIN_FILENO)
+		close(s.fd);
+	free(s.buf);
 	return 0;
 fail:
 	if (ctx)
 		exr_finish(&ctx);
-	close(s.fd);
+	if (s.fd != STDIN_FILENO)
+		close(s.fd);
+	free(s.buf);
 	pm_image_free(img);
 	return -1;
 }

@@ -46,7 +46,10 @@ const char *pm_image_attr(const pm_image *img, const char *key);
 int pm_image_write_exr(const pm_image *img, const char *path, pm_error *err);
 
 /* Reads any scanline or tiled EXR with float/half/uint channels (converted
- * to float). Sizes are bounded before allocation. */
+ * to float). Sizes are bounded before allocation. Path "-" reads stdin;
+ * stdin, a FIFO or any input that is not a regular file is buffered whole
+ * in memory (at most 4 GiB + 64 MiB) before it is decoded. Messages name
+ * the file as 'path', or stdin. */
 int pm_image_read_exr(pm_image *img, const char *path, pm_error *err);
 
 #endif

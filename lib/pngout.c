@@ -43,14 +43,13 @@ png_quiet(png_structp png, png_const_charp msg)
 	(void)msg;
 }
 
-int
-pm_png_write(const char *path, int width, int height, const float *const rgb[3],
-             double ev, pm_error *err)
+static int
+write_png(const char *path, int width, int height, const float *const rgb[3],
+          const pm_tone *tone, pm_error *err)
 {
 	png_structp png;
 	png_infop info = NULL;
 	unsigned char *row;
-	double scale = exp2(ev);
 	pm_out out;
 
 	if (width < 1 || height < 1 || width > (1 << 24) || height > (1 << 24))
@@ -83,7 +82,7 @@ pm_png_write(const char *path, int width, int height, const float *const rgb[3],
 	for (int y = 0; y < height; y++) {
 		for (int x = 0; x < width; x++)
 			for (int k = 0; k < 3; k++)
-				row[3 * x + k] = pm_srgb8(rgb[k][(size_t)y * width + x] * scale);
+				row[3 * x + k] = pm_srgb8(pm_tone_apply(tone, rgb[k][(size_t)y * width + x]));
 		png_write_row(png, row);
 	}
 	png_write_end(png, info);
@@ -94,4 +93,14 @@ fail:
 	free(row);
 	pm_out_abort(&out);
 	return -1;
+}
+
+int
+pm_png_write(const char *path, int width, int height, const float *const rgb[3],
+             const pm_tone *tone, pm_error *err)
+{
+	static const pm_tone linear = { .ev = 0, .curve = PM_CURVE_CLAMP, .white = 1 };
+
+	/* Resolved here, not after write_png's setjmp. */
+	return write_png(path, width, height, rgb, tone ? tone : &linear, err);
 }

@@ -20,12 +20,13 @@ help(void)
 	printf("usage: %s\n"
 	       "  -f, --force     average despite differing pm.scene_hash (default: refuse)\n"
 	       "  -h, --help      print this help and exit\n"
-	       "  -o, --output F  write the average to the EXR file F (default: none)\n"
+	       "  -o, --output F  write the average to the EXR file F, - for stdout\n"
+	       "                  (default: none)\n"
 	       "  -q, --quiet     no warnings, no progress bar (default: warn about\n"
 	       "                  dropped layers and forced mismatches; a progress bar\n"
 	       "                  when stderr is a terminal)\n"
 	       "  -s, --stats     print passes, mean_stderr and mean to stdout (default: off)\n"
-	       "At least one of -o and -s is needed.\n", usage);
+	       "At least one of -o and -s is needed. An IMAGE - is an EXR read from stdin.\n", usage);
 }
 
 /* Attributes copied to the output when every input has the same value (or
@@ -53,6 +54,7 @@ main(int argc, char **argv)
 		{ NULL, 0, NULL, 0 },
 	};
 	const char *outpath = NULL, *first = NULL;
+	char firstnm[300];
 	char *value[NAGREED] = { NULL };
 	int agree[NAGREED];
 	int force = 0, quiet = 0, stats = 0, opt, ndropped = 0;
@@ -78,18 +80,26 @@ main(int argc, char **argv)
 	if (!outpath && !stats)
 		usage_err(usage, "nothing to do: give -o OUT.exr or --stats");
 
+	if (outpath && stats && strcmp(outpath, "-") == 0)
+		usage_err(usage, "-o - with --stats: both would go to stdout; give the average a file name");
+	if (outpath)
+		check_output(usage, outpath, OUT_EXR, argv + optind, argc - optind);
+	else
+		check_stdin_once(usage, argv + optind, argc - optind);
 	pm_avg_init(&avg);
 	progress_start(&bar, "images", (uint64_t)(argc - optind), quiet);
 	for (int i = optind; i < argc; i++) {
-		const char *path = argv[i];
+		char nm[300];
+		/* Messages show stdin for -, a quoted name otherwise. */
+		const char *path = shown_name(argv[i], nm, sizeof nm);
 		double passes;
 
-		if (pm_image_read_exr(&img, path, &err))
+		if (pm_image_read_exr(&img, argv[i], &err))
 			die_err(&err);
 		if (pm_image_passes(&img, &passes, &err))
-			die("'%s': %s", path, err.msg);
+			die("%s: %s", path, err.msg);
 		if (!first) {
-			first = path;
+			first = strcpy(firstnm, path);
 			/* Later inputs can only drop channels this one has. */
 			if (!(dropped = calloc(img.nchan, sizeof *dropped)))
 				die("out of memory");
@@ -101,14 +111,14 @@ main(int argc, char **argv)
 		} else {
 			const char *hash = pm_image_attr(&img, "pm.scene_hash");
 			if (img.width != avg.width || img.height != avg.height)
-				die("'%s': size %dx%d differs from '%s' (%dx%d)", path,
+				die("%s: size %dx%d differs from %s (%dx%d)", path,
 				    img.width, img.height, first, avg.width, avg.height);
 			if (!same(hash, value[0])) {
 				if (!force)
-					die("'%s': scene hash %s differs from '%s' (%s)", path,
+					die("%s: scene hash %s differs from %s (%s)", path,
 					    hash ? hash : "(none)", first, value[0] ? value[0] : "(none)");
 				if (!quiet && agree[0])
-					warn("'%s': scene hash %s differs from '%s' (%s); averaging anyway",
+					warn("%s: scene hash %s differs from %s (%s); averaging anyway",
 					     path, hash ? hash : "(none)", first, value[0] ? value[0] : "(none)");
 			}
 			for (int k = 0; k < NAGREED; k++)
@@ -119,9 +129,9 @@ main(int argc, char **argv)
 					snprintf(dropped[ndropped++], PM_CHAN_NAME, "%s", avg.chan[c]);
 		}
 		if (pm_avg_add(&avg, &img, passes, &err))
-			die("'%s': %s", path, err.msg);
+			die("%s: %s", path, err.msg);
 		for (int c = 0; c < ndropped && !quiet; c++)
-			warn("'%s': no channel '%s'; it is left out of the average", path, dropped[c]);
+			warn("%s: no channel '%s'; it is left out of the average", path, dropped[c]);
 		ndropped = 0;
 		pm_image_free(&img);
 		progress_update(&bar, (uint64_t)(i - optind + 1));

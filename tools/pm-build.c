@@ -65,7 +65,7 @@ main(int argc, char **argv)
 	static char *stdin_only[] = {"-"};
 	const char *out = "-", *first = NULL;
 	char **in, qa[600], qb[600];
-	int force = 0, quiet = 0, nin, c, stdin_seen = 0;
+	int force = 0, quiet = 0, nin, c;
 	pm_photons acc;
 	pm_error err;
 	pm_out o;
@@ -89,11 +89,7 @@ main(int argc, char **argv)
 		in = stdin_only;
 		nin = 1;
 	}
-	for (int i = 0; i < nin; i++)
-		if (strcmp(in[i], "-") == 0 && stdin_seen++)
-			usage_err(usage, "stdin (-) given more than once");
-	if (strcmp(out, "-") == 0 && isatty(STDOUT_FILENO))
-		die("refusing to write a binary photon map to a terminal (use -o FILE or a pipe)");
+	check_output(usage, out, OUT_PHOTONS, in, nin);
 
 	/* Read everything before opening the output, so a bad input leaves an
 	 * existing output file untouched. */

@@ -4,6 +4,7 @@
 #include <getopt.h>
 #include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
 
 #include "compare.h"
 #include "image.h"
@@ -23,7 +24,8 @@ help(void)
 	       "                   !C selects pixels where C <= 0.5 instead (default: R)\n"
 	       "  -o, --output ERR.exr  also write the relative error map (A - B) / B per\n"
 	       "                   channel (A - B where B = 0) as R, G, B (default: none)\n"
-	       "Prints rmse, relmse, mae, max_abs, mean_a, mean_b, pixels; B is the reference.\n",
+	       "Prints rmse, relmse, mae, max_abs, mean_a, mean_b, pixels; B is the reference.\n"
+	       "One of A, B and M may be -, an EXR read from stdin.\n",
 	       usage);
 }
 
@@ -31,16 +33,18 @@ static void
 load(pm_image *img, const char *path, const char *layer, const float *p[3])
 {
 	pm_error err;
+	char nm[300];
 
+	shown_name(path, nm, sizeof nm);
 	if (pm_image_read_exr(img, path, &err))
 		die_err(&err);
 	if (pm_layer_planes(img, layer, p, &err))
-		die("'%s': %s", path, err.msg);
+		die("%s: %s", nm, err.msg);
 	for (int c = 0; c < img->nchan; c++) {
 		const float *plane = img->px + (size_t)c * img->width * img->height;
 		if ((plane == p[0] || plane == p[1] || plane == p[2]) &&
 		    pm_plane_finite(plane, img->width, img->height, img->chan[c], &err))
-			die("'%s': %s", path, err.msg);
+			die("%s: %s", nm, err.msg);
 	}
 }
 
@@ -83,6 +87,7 @@ main(int argc, char **argv)
 	pm_image a, b, m;
 	pm_diff d;
 	pm_error err;
+	char na[300], nb[300];
 	int opt;
 
 	util_init(argc, argv);
@@ -100,19 +105,28 @@ main(int argc, char **argv)
 		usage_err(usage, "--layer: empty name");
 	if (argc - optind != 2)
 		usage_err(usage, "want two images, got %d", argc - optind);
+	if (errpath && strcmp(errpath, "-") == 0)
+		usage_err(usage, "-o -: the statistics go to stdout; give the error map a file name");
+	{
+		char *in[3] = { argv[optind], argv[optind + 1], (char *)maskpath };
+		if (errpath)
+			check_output(usage, errpath, OUT_EXR, in, maskpath ? 3 : 2);
+		else
+			check_stdin_once(usage, in, maskpath ? 3 : 2);
+	}
 	load(&a, argv[optind], layer, pa);
 	load(&b, argv[optind + 1], layer, pb);
 	if (a.width != b.width || a.height != b.height)
-		die("'%s': size %dx%d differs from '%s' (%dx%d)", argv[optind], a.width, a.height,
-		    argv[optind + 1], b.width, b.height);
+		die("%s: size %dx%d differs from %s (%dx%d)", shown_name(argv[optind], na, sizeof na),
+		    a.width, a.height, shown_name(argv[optind + 1], nb, sizeof nb), b.width, b.height);
 	if (maskpath) {
 		if (pm_image_read_exr(&m, maskpath, &err))
 			die_err(&err);
 		if (m.width != a.width || m.height != a.height)
-			die("'%s': size %dx%d differs from '%s' (%dx%d)", maskpath, m.width, m.height,
-			    argv[optind], a.width, a.height);
+			die("%s: size %dx%d differs from %s (%dx%d)", shown_name(maskpath, nb, sizeof nb),
+			    m.width, m.height, shown_name(argv[optind], na, sizeof na), a.width, a.height);
 		if (!(mask = pm_image_chan(&m, maskchan + (*maskchan == '!'))))
-			die("'%s': no channel '%s'", maskpath, maskchan + (*maskchan == '!'));
+			die("%s: no channel '%s'", shown_name(maskpath, nb, sizeof nb), maskchan + (*maskchan == '!'));
 		if (*maskchan == '!') {
 			size_t n = (size_t)m.width * m.height;
 			if (!(inv = malloc(n * sizeof *inv)))
@@ -123,7 +137,7 @@ main(int argc, char **argv)
 		}
 	}
 	if (pm_compare(pa, pb, mask, a.width, a.height, &d, &err))
-		die("'%s': %s", maskpath ? maskpath : argv[optind], err.msg);
+		die("%s: %s", shown_name(maskpath ? maskpath : argv[optind], na, sizeof na), err.msg);
 	if (errpath)
 		write_errmap(errpath, pa, pb, a.width, a.height);
 	printf("rmse: %.9g\nrelmse: %.9g\nmae: %.9g\nmax_abs: %.9g\nmean_a: %.9g\nmean_b: %.9g\n"

@@ -249,6 +249,7 @@ main(int argc, char **argv)
 		usage_err(usage, argc - optind ? "give exactly one FILE" : "no FILE given (- reads stdin)");
 	name = argv[optind];
 	shown_name(name, fn, sizeof fn);
+	check_output(usage, out, mode == M_PLY ? OUT_PLY : OUT_TEXT, argv + optind, 1);
 
 	f = strcmp(name, "-") == 0 ? stdin : fopen(name, "rb");
 	if (!f)

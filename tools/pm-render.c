@@ -35,7 +35,8 @@ help(void)
 	       "              all k photons (k, Jensen's, the default) or scaled by (k-1)/k\n"
 	       "              (k-1: unbiased on flat, evenly lit surfaces, where k reads\n"
 	       "              bright by 1/(k-1)); k-1 needs -e classical and -k 2 or more\n"
-	       "  -o OUT.exr  output image (required)\n"
+	       "  -o OUT.exr  output image, - for stdout (to pipe into pm-tonemap - or\n"
+	       "              pm-average -) (required)\n"
 	       "  -p SAMPLES  camera samples per pixel (default 4)\n"
 	       "  --max-samples N  refuse -p above N, against typos (default 65536)\n"
 	       "  -P I/N      pass I of N: seed and time derived from I and N, as pm-shoot -P\n"
@@ -131,6 +132,7 @@ main(int argc, char **argv)
 	if (o.spp > max_spp)
 		usage_err(usage, "-p: %d is more than %d samples per pixel (a typo? --max-samples raises the limit)",
 		          o.spp, max_spp);
+	check_output(usage, out, OUT_EXR, argv + optind, argc - optind);
 	pm_pass_apply(pass_i, pass_n, &o.seed, &have_seed, &time, &have_time);
 	set_threads(threads);
 

@@ -83,8 +83,7 @@ main(int argc, char **argv)
 	if (o.nphotons > max_photons)
 		usage_err(usage, "-n: %llu is more than %llu photons (a typo? --max-photons raises the limit)",
 		          (unsigned long long)o.nphotons, (unsigned long long)max_photons);
-	if (strcmp(out, "-") == 0 && isatty(1))
-		die("refusing to write binary photons to a terminal: use -o FILE or a pipe");
+	check_output(usage, out, OUT_PHOTONS, argv + optind, 1);
 	pm_pass_apply(pass_i, pass_n, &o.seed, &have_seed, &o.time, &have_time);
 	set_threads(threads);
 

@@ -1,7 +1,8 @@
 /* pm-tonemap — an 8-bit sRGB PNG preview of an EXR's beauty image or one of
- * its layers, with an exposure in stops (lib/pngout.h). Several inputs of
- * one height are set side by side, for comparisons like the paper's
- * figure 3. */
+ * its layers: an exposure in stops (given, or automatic from the
+ * log-average luminance), then a tone curve (lib/tonemap.h). Several inputs
+ * of one height are set side by side under one exposure, for comparisons
+ * like the paper's figure 3. */
 #include <getopt.h>
 #include <math.h>
 #include <stdio.h>
@@ -11,9 +12,11 @@
 #include "compare.h"
 #include "image.h"
 #include "pngout.h"
+#include "tonemap.h"
 #include "util.h"
 
-static const char usage[] = "pm-tonemap [-ah] [-e EV] [-l NAME] -o OUT.png IN.exr [IN.exr ...]";
+static const char usage[] =
+	"pm-tonemap [-ahq] [-c CURVE] [-e EV|auto] [-l NAME] [-w WHITE] -o OUT.png IN.exr|- [IN.exr ...]";
 
 #define GAP 4   /* black columns between images set side by side */
 
@@ -21,13 +24,55 @@ static void
 help(void)
 {
 	printf("usage: %s\n"
-	       "Several inputs of the same height are shown side by side, %d pixels apart.\n"
-	       "  -a, --abs          show absolute values (for signed images like pm-diff -o)\n"
-	       "  -e, --exposure EV  multiply by 2^EV before the sRGB curve (default: 0)\n"
-	       "  -h, --help         print this help and exit\n"
-	       "  -l, --layer NAME   show NAME.R, NAME.G, NAME.B (or the single channel NAME\n"
-	       "                     as grey) (default: the beauty R, G, B)\n"
-	       "  -o, --output F     the PNG to write; - for stdout (required)\n", usage, GAP);
+	       "Several inputs of the same height are shown side by side, %d pixels apart,\n"
+	       "under one exposure. An input - is an EXR read from stdin.\n"
+	       "  -a, --abs           show absolute values (for signed images like pm-diff -o)\n"
+	       "  -c, --curve CURVE   tone curve after the exposure: reinhard (highlights\n"
+	       "                      compressed, white only from --white on) or clamp\n"
+	       "                      (values at or above 1 are white) (default: reinhard)\n"
+	       "  -e, --exposure EV   multiply by 2^EV before the curve, or auto: map the\n"
+	       "                      log-average luminance to middle grey (%.2f) and print\n"
+	       "                      the EV chosen on stderr, to give back as -e EV\n"
+	       "                      (default: auto)\n"
+	       "  -h, --help          print this help and exit\n"
+	       "  -l, --layer NAME    show NAME.R, NAME.G, NAME.B (or the single channel NAME\n"
+	       "                      as grey) (default: the beauty R, G, B)\n"
+	       "  -o, --output F      the PNG to write; - for stdout (required)\n"
+	       "  -q, --quiet         do not print the auto exposure (default: print it)\n"
+	       "  -w, --white WHITE   reinhard's white point, in exposed units (default: 4)\n",
+	       usage, GAP, PM_AUTO_KEY);
+}
+
+/* One input's planes, copied out of its image (which is freed at once, so
+ * that stdin is read only once and memory holds only what is shown). */
+typedef struct shown {
+	int w, h;
+	float *p[3];
+} shown;
+
+static void
+load(shown *s, const char *path, const char *layer, int absval)
+{
+	const float *p[3];
+	char name[300];
+	pm_image img;
+	pm_error err;
+	size_t n;
+
+	if (pm_image_read_exr(&img, path, &err))
+		die_err(&err);
+	if (pm_layer_planes(&img, layer, p, &err))
+		die("%s: %s", shown_name(path, name, sizeof name), err.msg);
+	s->w = img.width;
+	s->h = img.height;
+	n = (size_t)s->w * s->h;
+	for (int c = 0; c < 3; c++) {
+		if (!(s->p[c] = malloc(n * sizeof *s->p[c])))
+			die("out of memory");
+		for (size_t i = 0; i < n; i++)
+			s->p[c][i] = absval ? fabsf(p[c][i]) : p[c][i];
+	}
+	pm_image_free(&img);
 }
 
 int
@@ -35,28 +80,46 @@ main(int argc, char **argv)
 {
 	static const struct option longopts[] = {
 		{ "abs", no_argument, NULL, 'a' },
+		{ "curve", required_argument, NULL, 'c' },
 		{ "exposure", required_argument, NULL, 'e' },
 		{ "help", no_argument, NULL, 'h' },
 		{ "layer", required_argument, NULL, 'l' },
 		{ "output", required_argument, NULL, 'o' },
+		{ "quiet", no_argument, NULL, 'q' },
+		{ "white", required_argument, NULL, 'w' },
 		{ NULL, 0, NULL, 0 },
 	};
 	const char *layer = NULL, *outpath = NULL;
-	const float *p[3];
+	/* Auto exposure and a curve that keeps highlights by default, so that
+	 * a scene lit by 2 W or by 5000 W previews alike, and lamps and the
+	 * ceiling around them keep their detail. */
+	pm_tone tone = { .ev = 0, .curve = PM_CURVE_REINHARD, .white = 4 };
+	shown *in;
 	float *side[3];
-	double ev = 0;
-	pm_image img;
 	pm_error err;
-	int opt, absval = 0, n, w = 0, h = 0, x0 = 0;
+	double logavg = 0;
+	size_t used = 0;
+	int opt, absval = 0, autoev = 1, quiet = 0, curve, n, w = 0, h = 0, x0 = 0;
 
 	util_init(argc, argv);
-	while ((opt = getopt_long(argc, argv, ":ae:hl:o:", longopts, NULL)) != -1) {
+	while ((opt = getopt_long(argc, argv, ":ac:e:hl:o:qw:", longopts, NULL)) != -1) {
 		switch (opt) {
 		case 'a': absval = 1; break;
-		case 'e': ev = parse_real(optarg, -100, 100, "--exposure", usage); break;
+		case 'c':
+			if ((curve = pm_curve_parse(optarg)) < 0)
+				usage_err(usage, "--curve: unknown curve '%s' (clamp or reinhard)", optarg);
+			tone.curve = curve;
+			break;
+		case 'e':
+			autoev = strcmp(optarg, "auto") == 0;
+			if (!autoev)
+				tone.ev = parse_real(optarg, -100, 100, "--exposure", usage);
+			break;
 		case 'h': help(); return 0;
 		case 'l': layer = optarg; break;
 		case 'o': outpath = optarg; break;
+		case 'q': quiet = 1; break;
+		case 'w': tone.white = parse_real(optarg, 1e-6, 1e30, "--white", usage); break;
 		default: bad_option(usage, opt, argv);
 		}
 	}
@@ -66,36 +129,43 @@ main(int argc, char **argv)
 		usage_err(usage, "no output: give -o OUT.png");
 	if ((n = argc - optind) < 1)
 		usage_err(usage, "no input image");
-	/* First pass: sizes, so the output can be allocated once. */
+	check_output(usage, outpath, OUT_PNG, argv + optind, n);
+	if (!(in = calloc(n, sizeof *in)))
+		die("out of memory");
 	for (int i = 0; i < n; i++) {
-		if (pm_image_read_exr(&img, argv[optind + i], &err))
-			die_err(&err);
-		if (i > 0 && img.height != h)
-			die("'%s': height %d differs from '%s' (%d)", argv[optind + i], img.height,
-			    argv[optind], h);
-		h = img.height;
-		w += img.width + (i > 0 ? GAP : 0);
-		pm_image_free(&img);
+		load(&in[i], argv[optind + i], layer, absval);
+		if (i > 0 && in[i].h != h) {
+			char a[300], b[300];
+			die("%s: height %d differs from %s (%d)", shown_name(argv[optind + i], a, sizeof a),
+			    in[i].h, shown_name(argv[optind], b, sizeof b), h);
+		}
+		h = in[i].h;
+		w += in[i].w + (i > 0 ? GAP : 0);
 	}
 	for (int c = 0; c < 3; c++)
 		if (!(side[c] = calloc((size_t)w * h, sizeof **side)))
 			die("out of memory");
 	for (int i = 0; i < n; i++) {
-		if (pm_image_read_exr(&img, argv[optind + i], &err))
-			die_err(&err);
-		if (pm_layer_planes(&img, layer, p, &err))
-			die("'%s': %s", argv[optind + i], err.msg);
-		for (int c = 0; c < 3; c++)
+		for (int c = 0; c < 3; c++) {
 			for (int y = 0; y < h; y++)
-				for (int x = 0; x < img.width; x++) {
-					float v = p[c][(size_t)y * img.width + x];
-					side[c][(size_t)y * w + x0 + x] = absval ? fabsf(v) : v;
-				}
-		x0 += img.width + GAP;
-		pm_image_free(&img);
+				memcpy(side[c] + (size_t)y * w + x0, in[i].p[c] + (size_t)y * in[i].w,
+				       (size_t)in[i].w * sizeof **side);
+			free(in[i].p[c]);
+		}
+		x0 += in[i].w + GAP;
 	}
-	if (pm_png_write(outpath, w, h, (const float *const *)side, ev, &err))
+	free(in);
+	/* The gaps are black and so left out, like any black pixel. */
+	if (autoev)
+		used = pm_auto_exposure((const float *const *)side, (size_t)w * h, &tone.ev, &logavg);
+	if (pm_png_write(outpath, w, h, (const float *const *)side, &tone, &err))
 		die_err(&err);
+	/* Only once the PNG is written, so a failed run says one thing. */
+	if (autoev && !quiet && used)
+		warn("exposure %+.2f EV (auto: log-average luminance %.4g to %.2f)",
+		     tone.ev, logavg, PM_AUTO_KEY);
+	else if (autoev && !quiet)
+		warn("exposure %+.2f EV (auto: the image is black)", tone.ev);
 	for (int c = 0; c < 3; c++)
 		free(side[c]);
 	return 0;

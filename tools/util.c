@@ -13,6 +13,8 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <strings.h>
+#include <sys/stat.h>
 #include <sys/syscall.h>
 #include <unistd.h>
 
@@ -248,6 +250,66 @@ shown_name(const char *name, char *buf, size_t n)
 	else
 		snprintf(buf, n, "'%s'", name);
 	return buf;
+}
+
+/* File name extensions pm knows, and what they hold. Kinds past OUT_TEXT
+ * are never written by pm: an output named so is always refused. */
+enum { IN_SCENE = OUT_TEXT + 1, IN_MESH, IN_IMAGE };
+static const struct {
+	const char *ext;
+	int kind;
+} known_ext[] = {
+	{ "pm", OUT_PHOTONS }, { "exr", OUT_EXR }, { "png", OUT_PNG }, { "ply", OUT_PLY },
+	{ "txt", OUT_TEXT }, { "tsv", OUT_TEXT }, { "pms", IN_SCENE }, { "obj", IN_MESH },
+	{ "off", IN_MESH }, { "stl", IN_MESH }, { "jpg", IN_IMAGE }, { "jpeg", IN_IMAGE },
+	{ "hdr", IN_IMAGE }, { "tif", IN_IMAGE }, { "tiff", IN_IMAGE }, { "ppm", IN_IMAGE },
+	{ "pfm", IN_IMAGE },
+};
+static const char *const kind_name[] = {
+	"a photon file", "an OpenEXR image", "a PNG image", "a PLY point cloud", "text",
+	"a scene", "a mesh", "an image format pm does not write",
+};
+static const char *const kind_ext[] = { ".pm", ".exr", ".png", ".ply", ".txt" };
+
+void
+check_stdin_once(const char *usage, char *const *inputs, int n)
+{
+	int nstdin = 0;
+
+	for (int i = 0; i < n; i++)
+		if (strcmp(inputs[i], "-") == 0 && nstdin++)
+			usage_err(usage, "stdin (-) given as input more than once (it can be read once)");
+}
+
+void
+check_output(const char *usage, const char *out, enum out_kind kind, char *const *inputs, int n)
+{
+	const char *dot = strrchr(out, '.'), *slash = strrchr(out, '/');
+	struct stat so, si;
+	int have_out;
+
+	check_stdin_once(usage, inputs, n);
+	if (strcmp(out, "-") == 0) {
+		/* PLY is written as text. */
+		if (kind != OUT_TEXT && kind != OUT_PLY && isatty(STDOUT_FILENO))
+			die("refusing to write %s to a terminal: use -o FILE or a pipe", kind_name[kind]);
+		return;
+	}
+	if (dot && (!slash || dot > slash + 1))
+		for (size_t e = 0; e < sizeof known_ext / sizeof known_ext[0]; e++)
+			if (strcasecmp(dot + 1, known_ext[e].ext) == 0 && known_ext[e].kind != (int)kind)
+				usage_err(usage, "'%s' names %s, but %s writes %s: name it %s", out,
+				          kind_name[known_ext[e].kind], argv0, kind_name[kind], kind_ext[kind]);
+	have_out = stat(out, &so) == 0;
+	for (int i = 0; i < n; i++) {
+		/* stdin counts too when it is the output file redirected. */
+		int in = strcmp(inputs[i], "-") == 0;
+		if (have_out ? (in ? fstat(STDIN_FILENO, &si) : stat(inputs[i], &si)) == 0 &&
+		               S_ISREG(si.st_mode) && si.st_dev == so.st_dev && si.st_ino == so.st_ino
+		             : !in && strcmp(inputs[i], out) == 0)
+			usage_err(usage, "'%s' is also an input%s: writing it would destroy it (choose another output)",
+			          out, in ? " (as stdin)" : "");
+	}
 }
 
 const char *

@@ -35,6 +35,22 @@ double parse_real(const char *s, double lo, double hi, const char *opt, const ch
 /* A file name as messages show it: quoted, or stdin for "-". Returns buf. */
 const char *shown_name(const char *name, char *buf, size_t n);
 
+/* What an output file holds, for check_output. */
+enum out_kind { OUT_PHOTONS, OUT_EXR, OUT_PNG, OUT_PLY, OUT_TEXT };
+
+/* Refuses, before any work, an output that would hurt (usage_err, exit 2):
+ * a name whose extension is another format's (out.png for an EXR, a .exr
+ * or .pms for photons; names without a known extension pass), a name
+ * that is one of the n inputs (the same file, or the same path when it does
+ * not exist yet), and inputs that name stdin (-) more than once. A binary
+ * output (photons, EXR, PNG) sent to stdout (-) when that is a terminal
+ * dies (exit 1). */
+void check_output(const char *usage, const char *out, enum out_kind kind,
+                  char *const *inputs, int n);
+
+/* Refuses (usage_err) inputs that name stdin (-) more than once. */
+void check_stdin_once(const char *usage, char *const *inputs, int n);
+
 /* The full command line, shell-quoted where needed; static storage. */
 const char *cmdline(void);
 

@@ -27,6 +27,6 @@ for est in classical compensated; do
 done
 "$bin/pm-tonemap" "$out/room-classical.exr" "$out/room-compensated.exr" -o "$out/figure3.png"
 "$bin/pm-diff" -o "$out/room-difference.exr" "$out/room-classical.exr" "$out/room-compensated.exr" >"$out/room-difference.txt"
-"$bin/pm-tonemap" --abs -e 3 "$out/room-difference.exr" -o "$out/figure3-difference.png"
+"$bin/pm-tonemap" -q -c clamp --abs -e 3 "$out/room-difference.exr" -o "$out/figure3-difference.png"
 echo "figure 3: classical | compensated from the same $N photon maps in $out/figure3.png;"
 echo "  |classical - compensated| / compensated (x8) in $out/figure3-difference.png"

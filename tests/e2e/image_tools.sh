@@ -133,16 +133,16 @@ expect_fail "diff: missing input named" 1 "^pm-diff: cannot open 'nope.exr'" pm-
 
 # ---- pm-tonemap ----
 "$T/mkimg" -v 0.5,0.25,0 half.exr 7 3
-pm-tonemap half.exr -o t.png
+pm-tonemap -c clamp -e 0 half.exr -o t.png
 check "tonemap PNG signature" test "$(od -An -tx1 -N8 t.png | tr -d ' \n')" = 89504e470d0a1a0a
 # IHDR: width and height as big-endian 32-bit numbers at bytes 16..23
 check "tonemap PNG size in IHDR" test "$(od -An -tx1 -j16 -N8 t.png | tr -d ' \n')" = 0000000700000003
 check "tonemap pixel: 0.5 -> 188, 0.25 -> 137, 0 -> 0" test "$("$T/pngpix" t.png 6 2 | tail -n 1)" = "188 137 0"
-pm-tonemap --exposure -1 half.exr -o t.png
+pm-tonemap -c clamp --exposure -1 half.exr -o t.png
 check "tonemap EV -1 halves: 0.25 -> 137" test "$("$T/pngpix" t.png 0 0 | tail -n 1)" = "137 99 0"
-pm-tonemap -e 1 -l direct la.exr -o t.png
+pm-tonemap -c clamp -e 1 -l direct la.exr -o t.png
 check "tonemap --layer and EV +1: 1,2,3 -> 255" test "$("$T/pngpix" t.png 0 0 | tail -n 1)" = "255 255 255"
-pm-tonemap -e -2 -l direct la.exr -o t.png
+pm-tonemap -c clamp -e -2 -l direct la.exr -o t.png
 check "tonemap --layer: 0.25,0.5,0.75" test "$("$T/pngpix" t.png 0 0 | tail -n 1)" = "137 188 225"
 pm-tonemap half.exr -o - >stdout.png
 check "tonemap to stdout" test "$("$T/pngpix" stdout.png | head -n 1)" = "7 3"

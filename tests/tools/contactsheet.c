@@ -135,7 +135,7 @@ main(int argc, char **argv)
 		}
 		y0 += rh[r] * scale + GAP;
 	}
-	if (pm_png_write(out, W, H, (const float *const *)plane, 0, &err)) {
+	if (pm_png_write(out, W, H, (const float *const *)plane, &(pm_tone){ .curve = PM_CURVE_CLAMP }, &err)) {
 		fprintf(stderr, "contactsheet: %s\n", err.msg);
 		return 1;
 	}

@@ -46,7 +46,7 @@ TEST(png_round_trip)
 
 	for (int i = 0; i < W * H; i++)
 		r[i] = i / 14.0f, g[i] = 0.5f, b[i] = (i % W == 0) ? 2.0f : 0.0f;
-	CHECKF(pm_png_write("t.png", W, H, rgb, -1, &err) == 0, "%s", err.msg);
+	CHECKF(pm_png_write("t.png", W, H, rgb, &(pm_tone){ .ev = -1 }, &err) == 0, "%s", err.msg);
 	memset(&im, 0, sizeof im);
 	im.version = PNG_IMAGE_VERSION;
 	CHECK(png_image_begin_read_from_file(&im, "t.png"));
@@ -58,7 +58,16 @@ TEST(png_round_trip)
 		    buf[3 * i + 2] != (i % W == 0 ? 255 : 0))
 			bad++;
 	CHECKF(bad == 0, "%d wrong pixels", bad);
-	CHECK(pm_png_write("no/such/dir/t.png", W, H, rgb, 0, &err) == -1 &&
+	/* No tone: EV 0 and clamp, so 0.5 -> 188 and 2 -> 255. */
+	CHECKF(pm_png_write("t.png", W, H, rgb, NULL, &err) == 0, "%s", err.msg);
+	memset(&im, 0, sizeof im);
+	im.version = PNG_IMAGE_VERSION;
+	im.format = PNG_FORMAT_RGB;
+	CHECK(png_image_begin_read_from_file(&im, "t.png"));
+	im.format = PNG_FORMAT_RGB;
+	CHECK(png_image_finish_read(&im, NULL, buf, 0, NULL));
+	CHECKF(buf[1] == 188 && buf[2] == 255, "%d %d", buf[1], buf[2]);
+	CHECK(pm_png_write("no/such/dir/t.png", W, H, rgb, &(pm_tone){ 0 }, &err) == -1 &&
 	      strstr(err.msg, "'no/such/dir/t.png'"));
 }
 
