@@ -52,7 +52,7 @@ typedef struct pm_photon_header {
 	uint64_t count;       /* records that follow */
 	uint64_t emitted;     /* light paths emitted, summed over merged inputs */
 	float bbox[6];        /* min x y z, max x y z of the positions (0s if empty) */
-	uint64_t scene_hash;
+	uint64_t light_hash;  /* the scene's light_hash (scene.h) */
 	double time;          /* shutter time of the light pass */
 	char seeds[256];      /* "7", or "1,2,3" after merging */
 	char *history;        /* producing command lines, '\n' separated; owned */

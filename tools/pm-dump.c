@@ -70,7 +70,7 @@ print_stats(FILE *o, const pm_photons *ph, size_t header_bytes)
 		        sum[1] / (double)h->count, sum[2] / (double)h->count);
 	else
 		fprintf(o, "mean_power: 0 0 0\n");
-	fprintf(o, "scene_hash: %016llx\n", (unsigned long long)h->scene_hash);
+	fprintf(o, "light_hash: %016llx\n", (unsigned long long)h->light_hash);
 	fprintf(o, "seeds: %s\n", h->seeds);
 	fprintf(o, "time: %.17g\n", h->time);
 	if (h->kdtree)

@@ -146,9 +146,10 @@ main(int argc, char **argv)
 			fclose(f);
 		if (!map.h.kdtree)
 			die("'%s': a photon file, not a photon map: run it through pm-build", mapname);
-		if (map.h.scene_hash != s.hash && !force)
-			die("'%s': photon map of another scene (hash %016" PRIx64 ", '%s' is %016" PRIx64 "); --force to use it",
-			    mapname, map.h.scene_hash, argv[optind], s.hash);
+		if (map.h.light_hash != s.light_hash && !force)
+			die("'%s': photon map of another scene (light_hash %016" PRIx64 ", '%s' has %016" PRIx64
+			    ": its geometry, materials or lights differ); --force to use it",
+			    mapname, map.h.light_hash, argv[optind], s.light_hash);
 		if (have_time && map.h.time != time && !force)
 			die("'%s': photon map is of time %g, not %g; --force to use it", mapname, map.h.time, time);
 		if (!have_time)
@@ -188,7 +189,7 @@ main(int argc, char **argv)
 	setattr(&img, "pm.photons", buf);
 	snprintf(buf, sizeof buf, "%" PRIu64, map.h.emitted);
 	setattr(&img, "pm.emitted", buf);
-	snprintf(buf, sizeof buf, "%016" PRIx64, s.hash);
+	snprintf(buf, sizeof buf, "%016" PRIx64, s.view_hash);
 	setattr(&img, "pm.scene_hash", buf);
 	setattr(&img, "pm.estimator", pm_estimator_name(o.estimator));
 	snprintf(buf, sizeof buf, "%d", o.k);
