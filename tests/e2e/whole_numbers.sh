@@ -3,13 +3,7 @@
 # (1.5, 1e-3) or an overflowing value (1e30) is a bad command line.
 . "$PM_TOP/tests/lib.sh"
 
-cat >s.pms <<'S'
-camera eye 0 1 3.5  look 0 1 0  up 0 1 0  fov 45  size 8 6
-material white diffuse albedo 0.7 0.7 0.7
-material lamp  diffuse albedo 0.5 0.5 0.5 emit 5 5 5
-box  white -1 0 -1  1 2 1 inward
-quad lamp  -0.3 1.99 -0.3  0.3 1.99 -0.3  0.3 1.99 0.3  -0.3 1.99 0.3
-S
+cp "$PM_TOP/tests/scenes/furnace.pms" s.pms
 
 # same photons: the records of two files agree (their command lines differ)
 same_photons() { pm-dump --tsv "$1" >"$1.tsv" && pm-dump --tsv "$2" >"$2.tsv" && cmp -s "$1.tsv" "$2.tsv"; }
