@@ -478,7 +478,7 @@ parse_value(pm_photon_header *h, int key, const char *val, pm_error *err)
 static int
 read_header(pm_photons *out, FILE *f, const char *name, char **raw, pm_error *err)
 {
-	static const char magic[] = "PM-PHOTONS\n";
+	static const char magic[] = PM_PHOTONS_MAGIC;
 	pm_photon_header *h = &out->h;
 	char fn[600], *line = NULL, *rawbuf = NULL;
 	pm_error first;

@@ -45,6 +45,8 @@ void pm_photon_encode(const pm_photon *p, unsigned char out[PM_PHOTON_BYTES]);
 void pm_photon_decode(pm_photon *p, const unsigned char in[PM_PHOTON_BYTES]);
 
 #define PM_PHOTONS_VERSION 1
+/* The first bytes of every photon file. */
+#define PM_PHOTONS_MAGIC "PM-PHOTONS\n"
 
 typedef struct pm_photon_header {
 	int version;

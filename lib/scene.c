@@ -14,6 +14,7 @@
 #include <sys/stat.h>
 
 #include "mesh.h"
+#include "photon.h"
 #include "scene_id.h"
 #include "scene_poly.h"
 #include "scene_shape.h"
@@ -963,6 +964,10 @@ pm_scene_load(pm_scene *s, const char *path, pm_error *err)
 	s->glossy_threshold = 100;
 	if (read_file(path, &data, &len, err))
 		return -1;
+	if (len >= sizeof PM_PHOTONS_MAGIC - 1 && !memcmp(data, PM_PHOTONS_MAGIC, sizeof PM_PHOTONS_MAGIC - 1)) {
+		free(data);
+		return pm_seterr(err, "'%s': a photon file, not a scene", path);
+	}
 	s->path = strdup(path);
 	const char *slash = strrchr(path, '/');
 	size_t dl = slash ? (size_t)(slash - path) + 1 : 0;

@@ -57,6 +57,19 @@ setattr(pm_image *img, const char *k, const char *v)
 		die_err(&err);
 }
 
+/* 1 if path begins as a photon file does. */
+static int
+is_photon_file(const char *path)
+{
+	char b[sizeof PM_PHOTONS_MAGIC - 1];
+	FILE *f = fopen(path, "rb");
+	int yes = f && fread(b, 1, sizeof b, f) == sizeof b && !memcmp(b, PM_PHOTONS_MAGIC, sizeof b);
+
+	if (f)
+		fclose(f);
+	return yes;
+}
+
 int
 main(int argc, char **argv)
 {
@@ -134,8 +147,11 @@ main(int argc, char **argv)
 	pm_pass_apply(pass_i, pass_n, &o.seed, &have_seed, &time, &have_time);
 	set_threads(threads);
 
-	if (pm_scene_load(&s, argv[optind], &err) != 0)
+	if (pm_scene_load(&s, argv[optind], &err) != 0) {
+		if (mapname && is_photon_file(argv[optind]))
+			die("'%s': a photon file where the scene belongs: the order is SCENE MAP", argv[optind]);
 		die_err(&err);
+	}
 	if (mapname) {
 		FILE *f = strcmp(mapname, "-") == 0 ? stdin : fopen(mapname, "rb");
 		if (!f)
