@@ -65,3 +65,13 @@ perl -0pe 's/^light_hash=/scene_hash=/m' map.pm >old.pm
 expect_fail "an older pm's map is refused as such" 1 \
 	"^pm-render: 'old.pm': photon file of an older pm (it records scene_hash, not light_hash): shoot it again$" \
 	pm-render -q -p 1 s.pms old.pm -o o.exr
+
+# a pass's provenance: pm-dump --header reads an EXR's attributes
+pm-dump --header a.exr >a.hdr
+check "pm-dump --header on an EXR shows its size" grep -qx 'size=12 9' a.hdr
+check "pm-dump --header on an EXR shows pm.scene_hash" \
+	grep -qx "pm.scene_hash=$("$PM_BIN/../tests/tools/exrattr" a.exr pm.scene_hash)" a.hdr
+check "pm-dump --header on an EXR shows the commands, one a line" \
+	test "$(grep '^pm.command=' a.hdr | cut -d' ' -f1)" = "$(printf 'pm.command=pm-shoot\npm.command=pm-build\npm.command=pm-render')"
+expect_fail "pm-dump --stats on an EXR says only --header reads images" 1 \
+	"^pm-dump: 'a.exr': an OpenEXR image: only --header reads images$" pm-dump --stats a.exr
