@@ -2,6 +2,7 @@
  * OpenMesh, triangulation, motion, the scene identities, error messages, and the
  * bundled example scenes. Scenes are written to a private temporary directory. */
 #include <math.h>
+#include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -427,6 +428,71 @@ TEST(identity)
 		CHECK(l != l0 && v != v0);
 }
 
+/* formats/scene.md's byte sequence for the identities, written out by hand
+ * for one small scene: the page, not only the code, says what is hashed. */
+static uint64_t spec_h;
+static void
+spec_u32(uint32_t v)
+{
+	for (int i = 0; i < 4; i++)
+		spec_h = (spec_h ^ ((v >> (8 * i)) & 0xff)) * 1099511628211ull;
+}
+static void
+spec_f32s(int n, ...)
+{
+	va_list ap;
+	va_start(ap, n);
+	for (int i = 0; i < n; i++) {
+		float f = (float)va_arg(ap, double);
+		uint32_t u;
+		memcpy(&u, &f, 4);
+		spec_u32(u);
+	}
+	va_end(ap);
+}
+
+TEST(identity_as_documented)
+{
+	pm_scene s;
+	pm_error err = {""};
+	const char *path = put("spec.pms", CAMERA LIGHT WHITE "triangle white 0 0 0  1 0 0  0 1 0\n");
+
+	if (pm_scene_load(&s, path, &err)) {
+		CHECKF(0, "%s", err.msg);
+		return;
+	}
+	spec_h = 14695981039346656037ull;
+	spec_f32s(1, 100.0);                                   /* glossy threshold */
+	spec_u32(1);                                           /* materials */
+	spec_u32(0);                                           /* diffuse */
+	spec_f32s(3, 0.5, 0.5, 0.5);                           /* albedo */
+	spec_f32s(3, 1.0, 1.0, 1.0);                           /* ks: not given */
+	spec_f32s(2, 0.0, 0.0);                                /* exponent, ior */
+	spec_f32s(3, 0.0, 0.0, 0.0);                           /* emit */
+	spec_u32(0);                                           /* not twosided */
+	spec_u32(1);                                           /* objects */
+	spec_u32(0), spec_u32(0);                              /* material 0, a sheet */
+	spec_f32s(3, 0.0, 0.0, 0.0);                           /* move */
+	spec_u32(1), spec_u32(3);                              /* polygons, vertices */
+	spec_u32(1);                                           /* point lights */
+	spec_f32s(9, 0.0, 5.0, 0.0, 10.0, 10.0, 10.0, 0.0, 0.0, 0.0);
+	spec_u32(3);                                           /* vertices */
+	spec_f32s(9, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0, 0.0);
+	spec_u32(1);                                           /* polygons */
+	spec_u32(3), spec_u32(0), spec_u32(1), spec_u32(2);
+	uint64_t light = spec_h;
+	CHECKF(s.light_hash == light, "light_hash %016llx, documented %016llx",
+	       (unsigned long long)s.light_hash, (unsigned long long)light);
+
+	spec_h = 14695981039346656037ull;
+	spec_u32((uint32_t)light), spec_u32((uint32_t)(light >> 32));
+	spec_f32s(10, 0.0, 0.0, 10.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 40.0);
+	spec_u32(64), spec_u32(48);
+	CHECKF(s.view_hash == spec_h, "view identity %016llx, documented %016llx",
+	       (unsigned long long)s.view_hash, (unsigned long long)spec_h);
+	pm_scene_free(&s);
+}
+
 /* Each malformed scene must fail with exactly "FILE:LINE: " and a message
  * containing want. */
 static void
@@ -593,6 +659,7 @@ main(void)
 	RUN(motion);
 	RUN(materials_strong_and_soft);
 	RUN(identity);
+	RUN(identity_as_documented);
 	RUN(malformed_scenes);
 	RUN(example_cornell);
 	RUN(example_room);
