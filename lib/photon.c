@@ -371,7 +371,7 @@ enum { K_VERSION, K_ENDIAN, K_RECSIZE, K_KDTREE, K_COUNT, K_EMITTED, K_BBOX,
        K_HASH, K_TIME, K_SEEDS, K_COMMAND, K_N };
 static const char *const keynames[K_N] = {
 	"version", "endian", "record_size", "kdtree", "count", "emitted", "bbox",
-	"scene_hash", "time", "seeds", "command",
+	"light_hash", "time", "seeds", "command",
 };
 
 static int
@@ -450,8 +450,8 @@ parse_value(pm_photon_header *h, int key, const char *val, pm_error *err)
 		return 0;
 	}
 	case K_HASH:
-		if (parse_hex64(val, &h->scene_hash))
-			return pm_seterr(err, "bad scene_hash '%.40s' (want 16 hex digits)", val);
+		if (parse_hex64(val, &h->light_hash))
+			return pm_seterr(err, "bad light_hash '%.40s' (want 16 hex digits)", val);
 		return 0;
 	case K_TIME:
 		h->time = strtod(val, &end);
@@ -478,7 +478,7 @@ parse_value(pm_photon_header *h, int key, const char *val, pm_error *err)
 static int
 read_header(pm_photons *out, FILE *f, const char *name, char **raw, pm_error *err)
 {
-	static const char magic[] = "PM-PHOTONS\n";
+	static const char magic[] = PM_PHOTONS_MAGIC;
 	pm_photon_header *h = &out->h;
 	char fn[600], *line = NULL, *rawbuf = NULL;
 	pm_error first;
@@ -552,6 +552,13 @@ read_header(pm_photons *out, FILE *f, const char *name, char **raw, pm_error *er
 		for (key = 0; key < K_N; key++)
 			if (strcmp(line, keynames[key]) == 0)
 				break;
+		if (key == K_N && strcmp(line, "scene_hash") == 0) {
+			/* Before light_hash, files carried a hash of the scene
+			 * file's bytes, which cannot be compared with a scene now. */
+			pm_seterr(&first, "photon file of an older pm (it records scene_hash, not light_hash): shoot it again");
+			bad = 1;
+			continue;
+		}
 		if (key == K_N) {
 			pm_seterr(&first, "line %d: unknown key '%.40s'", lineno, line);
 			bad = 1;
@@ -796,11 +803,11 @@ pm_photons_write(const pm_photons *ph, FILE *f, const char *name, pm_error *err)
 		return -1;
 	fprintf(f, "PM-PHOTONS\nversion=%d\nendian=little\nrecord_size=%d\nkdtree=%d\n"
 	        "count=%llu\nemitted=%llu\nbbox=%.9g %.9g %.9g %.9g %.9g %.9g\n"
-	        "scene_hash=%016llx\ntime=%.17g\nseeds=%s\n",
+	        "light_hash=%016llx\ntime=%.17g\nseeds=%s\n",
 	        PM_PHOTONS_VERSION, PM_PHOTON_BYTES, h->kdtree,
 	        (unsigned long long)h->count, (unsigned long long)h->emitted,
 	        bb[0], bb[1], bb[2], bb[3], bb[4], bb[5],
-	        (unsigned long long)h->scene_hash, h->time, h->seeds);
+	        (unsigned long long)h->light_hash, h->time, h->seeds);
 	for (s = h->history; s && *s;) {
 		size_t n = strcspn(s, "\n");
 		fprintf(f, "command=%.*s\n", (int)n, s);

@@ -45,6 +45,8 @@ void pm_photon_encode(const pm_photon *p, unsigned char out[PM_PHOTON_BYTES]);
 void pm_photon_decode(pm_photon *p, const unsigned char in[PM_PHOTON_BYTES]);
 
 #define PM_PHOTONS_VERSION 1
+/* The first bytes of every photon file. */
+#define PM_PHOTONS_MAGIC "PM-PHOTONS\n"
 
 typedef struct pm_photon_header {
 	int version;
@@ -52,7 +54,7 @@ typedef struct pm_photon_header {
 	uint64_t count;       /* records that follow */
 	uint64_t emitted;     /* light paths emitted, summed over merged inputs */
 	float bbox[6];        /* min x y z, max x y z of the positions (0s if empty) */
-	uint64_t scene_hash;
+	uint64_t light_hash;  /* the scene's light_hash (scene.h) */
 	double time;          /* shutter time of the light pass */
 	char seeds[256];      /* "7", or "1,2,3" after merging */
 	char *history;        /* producing command lines, '\n' separated; owned */

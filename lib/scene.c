@@ -14,6 +14,8 @@
 #include <sys/stat.h>
 
 #include "mesh.h"
+#include "photon.h"
+#include "scene_id.h"
 #include "scene_poly.h"
 #include "scene_shape.h"
 
@@ -27,9 +29,6 @@
 #define MAX_POLYS (1u << 28)
 #define MAX_TRIS (1u << 28)
 #define MAX_POLY_VERTS (1u << 30)   /* polygon corners in all */
-
-#define FNV_OFFSET 14695981039346656037ull
-#define FNV_PRIME 1099511628211ull
 
 /* One affine map x -> m[0..2][0..2] x + m[.][3]. */
 typedef struct { double m[3][4]; } xform;
@@ -802,34 +801,6 @@ st_sphere(parser *p)
 	return r;
 }
 
-/* FNV-1a, 64-bit (Fowler, Noll, Vo). */
-static uint64_t
-fnv1a(uint64_t h, const unsigned char *b, size_t n)
-{
-	for (size_t i = 0; i < n; i++) {
-		h ^= b[i];
-		h *= FNV_PRIME;
-	}
-	return h;
-}
-
-static int
-hash_file(const char *path, uint64_t *h, pm_error *err)
-{
-	unsigned char buf[65536];
-	size_t n;
-	FILE *f = fopen(path, "rb");
-	if (!f)
-		return pm_seterr(err, "'%s': cannot read mesh: %s", path, strerror(errno));
-	while ((n = fread(buf, 1, sizeof buf, f)) > 0)
-		*h = fnv1a(*h, buf, n);
-	int bad = ferror(f);
-	fclose(f);
-	if (bad)
-		return pm_seterr(err, "'%s': cannot read mesh: read error", path);
-	return 0;
-}
-
 static int
 st_mesh(parser *p)
 {
@@ -848,7 +819,7 @@ st_mesh(parser *p)
 		return perr(p, "out of memory");
 	snprintf(path, len, "%s%s", file[0] == '/' ? "" : p->dir, file);
 	pm_meshdata md;
-	if (pm_mesh_read(path, &md, p->err) || hash_file(path, &p->s->hash, p->err)) {
+	if (pm_mesh_read(path, &md, p->err)) {
 		pm_mesh_free(&md);
 		free(path);
 		return pm_preferr(p->err, "%s:%d", p->path, p->line);
@@ -991,10 +962,12 @@ pm_scene_load(pm_scene *s, const char *path, pm_error *err)
 	p.err = err;
 	p.path = path;
 	s->glossy_threshold = 100;
-	s->hash = FNV_OFFSET;
 	if (read_file(path, &data, &len, err))
 		return -1;
-	s->hash = fnv1a(s->hash, (const unsigned char *)data, len);
+	if (len >= sizeof PM_PHOTONS_MAGIC - 1 && !memcmp(data, PM_PHOTONS_MAGIC, sizeof PM_PHOTONS_MAGIC - 1)) {
+		free(data);
+		return pm_seterr(err, "'%s': a photon file, not a scene", path);
+	}
 	s->path = strdup(path);
 	const char *slash = strrchr(path, '/');
 	size_t dl = slash ? (size_t)(slash - path) + 1 : 0;
@@ -1013,6 +986,8 @@ pm_scene_load(pm_scene *s, const char *path, pm_error *err)
 		if (!s->poly_start)
 			r = pm_seterr(err, "'%s': out of memory", path);
 	}
+	if (r == 0)
+		pm_scene_identify(s);
 out:
 	free(data);
 	free(p.dir);

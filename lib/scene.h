@@ -55,7 +55,9 @@ typedef struct pm_camera_desc {
 
 typedef struct pm_scene {
 	char *path;              /* as given to pm_scene_load */
-	uint64_t hash;           /* scene identity, see formats/scene.md */
+	/* Identities (formats/scene.md, "Scene identity"; scene_id.h): of what
+	 * the light pass depends on, and of that plus the camera. */
+	uint64_t light_hash, view_hash;
 	pm_camera_desc camera;
 	float glossy_threshold;  /* Blinn exponent at or above which glossy is strong */
 

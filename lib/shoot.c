@@ -133,7 +133,7 @@ pm_shoot(const pm_scene *s, const pm_accel *a, const pm_lights *L,
 	out->h.kdtree = 0;
 	out->h.count = stored;
 	out->h.emitted = emitted;
-	out->h.scene_hash = s->hash;
+	out->h.light_hash = s->light_hash;
 	out->h.time = o->time;
 	snprintf(out->h.seeds, sizeof out->h.seeds, "%llu", (unsigned long long)o->seed);
 	return 0;

@@ -27,7 +27,7 @@ typedef struct pm_shoot_opts {
 	void *progress_arg;
 } pm_shoot_opts;
 
-/* Fills out (photons, header: count, emitted, scene hash, time, seed; the
+/* Fills out (photons, header: count, emitted, light_hash, time, seed; the
  * bbox is left 0: pm_photons_write computes it from the records).
  * Stops after the path that stores the n-th photon; the photons it would
  * have stored later are dropped and every path begun is counted as emitted.

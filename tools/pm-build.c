@@ -19,7 +19,7 @@ static const char help[] =
 	"Reads photon files (or maps) and writes one photon map: the records\n"
 	"concatenated, emitted counts summed, then ordered as a balanced kd-tree.\n"
 	"With no FILE, or FILE -, reads stdin.\n"
-	"  -f, --force        merge inputs whose scene hash or time differ (default: refuse)\n"
+	"  -f, --force        merge inputs whose light_hash or time differ (default: refuse)\n"
 	"  -h, --help         print this help and exit\n"
 	"  -j THREADS         threads, 0 for all cores (default 0); the output does not depend on it\n"
 	"  -o, --output FILE  the photon map to write, - for stdout (default: -)\n"
@@ -110,14 +110,14 @@ main(int argc, char **argv)
 			first = name;
 			continue;
 		}
-		if (ph.h.scene_hash != acc.h.scene_hash) {
+		if (ph.h.light_hash != acc.h.light_hash) {
 			if (!force)
-				die("%s: scene hash %016llx differs from %s (%016llx); --force merges anyway",
-				    shown_name(name, qa, sizeof qa), (unsigned long long)ph.h.scene_hash,
-				    shown_name(first, qb, sizeof qb), (unsigned long long)acc.h.scene_hash);
+				die("%s: light_hash %016llx differs from %s (%016llx); --force merges anyway",
+				    shown_name(name, qa, sizeof qa), (unsigned long long)ph.h.light_hash,
+				    shown_name(first, qb, sizeof qb), (unsigned long long)acc.h.light_hash);
 			if (!quiet)
-				warn("%s: scene hash %016llx differs from %s; merging as forced",
-				     shown_name(name, qa, sizeof qa), (unsigned long long)ph.h.scene_hash,
+				warn("%s: light_hash %016llx differs from %s; merging as forced",
+				     shown_name(name, qa, sizeof qa), (unsigned long long)ph.h.light_hash,
 				     shown_name(first, qb, sizeof qb));
 		}
 		if (ph.h.time != acc.h.time) {

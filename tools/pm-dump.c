@@ -1,6 +1,7 @@
 /* pm-dump — inspects a photon file or map (formats/photons.md): its header,
  * statistics, the photons as TSV or a PLY point cloud, or the k nearest
- * photons of a point. Reads through the library's one photon reader. */
+ * photons of a point. Reads through the library's one photon reader; with
+ * --header it also shows a pass image's provenance (formats/image.md). */
 #define _GNU_SOURCE
 #include <errno.h>
 #include <getopt.h>
@@ -10,6 +11,7 @@
 #include <string.h>
 
 #include "atomic.h"
+#include "image.h"
 #include "kdtree.h"
 #include "photon.h"
 #include "util.h"
@@ -20,7 +22,8 @@ static const char usage[] =
 static const char help[] =
 	"Prints what a photon file or photon map holds. One of:\n"
 	"  --header           the header lines as stored (reads only the header, so\n"
-	"                     it works on a truncated file)\n"
+	"                     it works on a truncated file); for an EXR image, its\n"
+	"                     size, channels and string attributes as key=value\n"
 	"  --near X,Y,Z       the K nearest photons of the point, nearest first, with\n"
 	"                     their index and distance (photon maps only)\n"
 	"  --ply              an ASCII PLY point cloud: position, colour from the\n"
@@ -41,6 +44,42 @@ print_header(FILE *o, const char *raw)
 	/* everything before the blank line that ends the header */
 	const char *end = strstr(raw, "\n\n");
 	fwrite(raw, 1, end ? (size_t)(end - raw) + 1 : strlen(raw), o);
+}
+
+/* 1 if the named file begins with the OpenEXR magic number. */
+static int
+is_exr(const char *name)
+{
+	static const unsigned char magic[4] = {0x76, 0x2f, 0x31, 0x01};
+	unsigned char b[4];
+	FILE *f = strcmp(name, "-") == 0 ? NULL : fopen(name, "rb");
+	int yes = f && fread(b, 1, 4, f) == 4 && memcmp(b, magic, 4) == 0;
+
+	if (f)
+		fclose(f);
+	return yes;
+}
+
+/* An image's header as key=value lines: a value of several lines (the
+ * command history) gives one line per line, as in a photon file. */
+static void
+print_exr_header(FILE *o, const pm_image *img)
+{
+	fprintf(o, "format=exr\nsize=%d %d\nchannels=", img->width, img->height);
+	for (int c = 0; c < img->nchan; c++)
+		fprintf(o, "%s%s", c ? " " : "", img->chan[c]);
+	fputc('\n', o);
+	for (int i = 0; i < img->nattr; i++) {
+		const char *v = img->attr[i].value;
+		do {
+			size_t n = strcspn(v, "\n");
+			fprintf(o, "%s=", img->attr[i].key);
+			for (size_t j = 0; j < n; j++)
+				fputc((unsigned char)v[j] < 0x20 ? '?' : v[j], o);
+			fputc('\n', o);
+			v += n + (v[n] == '\n');
+		} while (*v);
+	}
 }
 
 static void
@@ -70,7 +109,7 @@ print_stats(FILE *o, const pm_photons *ph, size_t header_bytes)
 		        sum[1] / (double)h->count, sum[2] / (double)h->count);
 	else
 		fprintf(o, "mean_power: 0 0 0\n");
-	fprintf(o, "scene_hash: %016llx\n", (unsigned long long)h->scene_hash);
+	fprintf(o, "light_hash: %016llx\n", (unsigned long long)h->light_hash);
 	fprintf(o, "seeds: %s\n", h->seeds);
 	fprintf(o, "time: %.17g\n", h->time);
 	if (h->kdtree)
@@ -251,6 +290,18 @@ main(int argc, char **argv)
 	shown_name(name, fn, sizeof fn);
 	check_output(usage, out, mode == M_PLY ? OUT_PLY : OUT_TEXT, argv + optind, 1);
 
+	if (is_exr(name)) {
+		pm_image img;
+		if (mode != M_HEADER)
+			die("%s: an OpenEXR image: only --header reads images", fn);
+		if (pm_image_read_exr(&img, name, &err) || pm_out_open(&o, out, &err))
+			die_err(&err);
+		print_exr_header(o.f, &img);
+		if (pm_out_commit(&o, &err))
+			die_err(&err);
+		pm_image_free(&img);
+		return 0;
+	}
 	f = strcmp(name, "-") == 0 ? stdin : fopen(name, "rb");
 	if (!f)
 		die("cannot open '%s': %s", name, strerror(errno));

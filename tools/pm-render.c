@@ -58,6 +58,19 @@ setattr(pm_image *img, const char *k, const char *v)
 		die_err(&err);
 }
 
+/* 1 if path begins as a photon file does. */
+static int
+is_photon_file(const char *path)
+{
+	char b[sizeof PM_PHOTONS_MAGIC - 1];
+	FILE *f = fopen(path, "rb");
+	int yes = f && fread(b, 1, sizeof b, f) == sizeof b && !memcmp(b, PM_PHOTONS_MAGIC, sizeof b);
+
+	if (f)
+		fclose(f);
+	return yes;
+}
+
 int
 main(int argc, char **argv)
 {
@@ -136,8 +149,11 @@ main(int argc, char **argv)
 	pm_pass_apply(pass_i, pass_n, &o.seed, &have_seed, &time, &have_time);
 	set_threads(threads);
 
-	if (pm_scene_load(&s, argv[optind], &err) != 0)
+	if (pm_scene_load(&s, argv[optind], &err) != 0) {
+		if (mapname && is_photon_file(argv[optind]))
+			die("'%s': a photon file where the scene belongs: the order is SCENE MAP", argv[optind]);
 		die_err(&err);
+	}
 	if (mapname) {
 		FILE *f = strcmp(mapname, "-") == 0 ? stdin : fopen(mapname, "rb");
 		if (!f)
@@ -148,9 +164,10 @@ main(int argc, char **argv)
 			fclose(f);
 		if (!map.h.kdtree)
 			die("'%s': a photon file, not a photon map: run it through pm-build", mapname);
-		if (map.h.scene_hash != s.hash && !force)
-			die("'%s': photon map of another scene (hash %016" PRIx64 ", '%s' is %016" PRIx64 "); --force to use it",
-			    mapname, map.h.scene_hash, argv[optind], s.hash);
+		if (map.h.light_hash != s.light_hash && !force)
+			die("'%s': photon map of another scene (light_hash %016" PRIx64 ", '%s' has %016" PRIx64
+			    ": its geometry, materials or lights differ); --force to use it",
+			    mapname, map.h.light_hash, argv[optind], s.light_hash);
 		if (have_time && map.h.time != time && !force)
 			die("'%s': photon map is of time %g, not %g; --force to use it", mapname, map.h.time, time);
 		if (!have_time)
@@ -190,7 +207,7 @@ main(int argc, char **argv)
 	setattr(&img, "pm.photons", buf);
 	snprintf(buf, sizeof buf, "%" PRIu64, map.h.emitted);
 	setattr(&img, "pm.emitted", buf);
-	snprintf(buf, sizeof buf, "%016" PRIx64, s.hash);
+	snprintf(buf, sizeof buf, "%016" PRIx64, s.view_hash);
 	setattr(&img, "pm.scene_hash", buf);
 	setattr(&img, "pm.estimator", pm_estimator_name(o.estimator));
 	snprintf(buf, sizeof buf, "%d", o.k);

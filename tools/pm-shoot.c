@@ -24,7 +24,7 @@ help(void)
 {
 	printf("usage: %s\n"
 	       "Traces photons from the lights of SCENE and writes a photon file (formats/photons.md).\n"
-	       "  -n PHOTONS  photons to store (default 200000)\n"
+	       "  -n PHOTONS  photons to store, 1e6 or 2.5e5 allowed (default 200000)\n"
 	       "  --max-photons N  refuse -n above N, against typos (default 100000000: 2 GB)\n"
 	       "  -o FILE     output file, - for stdout (default -)\n"
 	       "  -P I/N      pass I of N: seed and time derived from I and N (see pm-shoot(1));\n"

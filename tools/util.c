@@ -6,6 +6,7 @@
 #include <errno.h>
 #include <getopt.h>
 #include <fcntl.h>
+#include <limits.h>
 #include <math.h>
 #include <omp.h>
 #include <signal.h>
@@ -197,16 +198,79 @@ bad_option(const char *usage, int opt, char **argv)
 	usage_err(usage, "unknown option '%s'", argv[optind - 1]);
 }
 
+/* A whole number in decimal, also in exponent form ("1e6", "2.5e5"), read
+ * exactly: *mag gets its magnitude, *neg its sign. Returns 0, or -1 if s is
+ * no decimal number, -2 if it has a fraction ("1.5", "1e-3"), -3 if its
+ * magnitude is 2^64 or more. */
+static int
+read_whole(const char *s, int *neg, unsigned long long *mag)
+{
+	const char *p = s, *first;
+	long ndig = 0, nfrac = 0, e = 0, shift;
+	int point = 0, eneg = 0;
+	unsigned long long v = 0;
+
+	*neg = *p == '-';
+	if (*p == '+' || *p == '-')
+		p++;
+	for (first = p; (*p >= '0' && *p <= '9') || (*p == '.' && !point); p++) {
+		if (*p == '.')
+			point = 1;
+		else
+			ndig++, nfrac += point;
+	}
+	if (ndig == 0)
+		return -1;
+	if (*p == 'e' || *p == 'E') {
+		p++;
+		eneg = *p == '-';
+		if (*p == '+' || *p == '-')
+			p++;
+		if (!(*p >= '0' && *p <= '9'))
+			return -1;
+		for (; *p >= '0' && *p <= '9'; p++)
+			if (e < 100000)   /* beyond any 64-bit number either way */
+				e = e * 10 + (*p - '0');
+	}
+	if (*p)
+		return -1;
+	/* The value is the digits as one integer times 10^shift. */
+	shift = (eneg ? -e : e) - nfrac;
+	long i = 0;
+	for (p = first; i < ndig; p++) {
+		if (*p == '.')
+			continue;
+		unsigned d = (unsigned)(*p - '0');
+		if (shift < 0 && i >= ndig + shift) {
+			if (d)
+				return -2;
+		} else if (v > (ULLONG_MAX - d) / 10) {
+			return -3;
+		} else {
+			v = v * 10 + d;
+		}
+		i++;
+	}
+	for (; shift > 0 && v; shift--) {
+		if (v > ULLONG_MAX / 10)
+			return -3;
+		v *= 10;
+	}
+	*mag = v;
+	return 0;
+}
+
 long long
 parse_int(const char *s, long long lo, long long hi, const char *opt, const char *usage)
 {
-	char *end;
-	long long v;
+	unsigned long long m;
+	int neg, r = read_whole(s, &neg, &m);
 
-	errno = 0;
-	v = strtoll(s, &end, 10);
-	if (errno || end == s || *end)
+	if (r == -1 || r == -2)
 		usage_err(usage, "%s: '%s' is not a whole number", opt, s);
+	if (r == -3 || m > (neg ? (unsigned long long)LLONG_MAX + 1 : (unsigned long long)LLONG_MAX))
+		usage_err(usage, "%s: %s is out of range [%lld, %lld]", opt, s, lo, hi);
+	long long v = neg ? (long long)(0 - m) : (long long)m;
 	if (v < lo || v > hi)
 		usage_err(usage, "%s: %s is out of range [%lld, %lld]", opt, s, lo, hi);
 	return v;
@@ -215,16 +279,15 @@ parse_int(const char *s, long long lo, long long hi, const char *opt, const char
 uint64_t
 parse_u64(const char *s, const char *opt, const char *usage)
 {
-	char *end;
-	unsigned long long v;
+	unsigned long long m;
+	int neg, r;
 
-	errno = 0;
 	if (*s == '-')
 		usage_err(usage, "%s: '%s' must not be negative", opt, s);
-	v = strtoull(s, &end, 10);
-	if (errno || end == s || *end)
+	r = read_whole(s, &neg, &m);
+	if (r)
 		usage_err(usage, "%s: '%s' is not a whole number below 2^64", opt, s);
-	return v;
+	return m;
 }
 
 double

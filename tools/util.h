@@ -27,7 +27,8 @@ _Noreturn void bad_option(const char *usage, int opt, char **argv);
 void warn(const char *fmt, ...) __attribute__((format(printf, 1, 2)));
 
 /* Checked parsers: the whole string must be a number within [lo, hi], else
- * usage_err naming the option. */
+ * usage_err naming the option. Whole numbers may be written in exponent
+ * form if their value is exact ("1e6", "2.5e5"; not "1.5" or "1e-3"). */
 long long parse_int(const char *s, long long lo, long long hi, const char *opt, const char *usage);
 uint64_t parse_u64(const char *s, const char *opt, const char *usage);
 double parse_real(const char *s, double lo, double hi, const char *opt, const char *usage);

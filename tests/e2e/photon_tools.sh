@@ -98,13 +98,13 @@ expect_fail "trailing junk" 1 "^pm-dump: 'junk.pm': trailing data after 1000 pho
 
 "$mk" -n 10 -H 1 -o h1.pm
 "$mk" -n 10 -H 2 -o h2.pm
-expect_fail "different scenes refused" 1 "^pm-build: 'h2.pm': scene hash 0000000000000002 differs from 'h1.pm' (0000000000000001); --force merges anyway$" pm-build h1.pm h2.pm -o x.pm
+expect_fail "different scenes refused" 1 "^pm-build: 'h2.pm': light_hash 0000000000000002 differs from 'h1.pm' (0000000000000001); --force merges anyway$" pm-build h1.pm h2.pm -o x.pm
 check "different scenes: nothing written" [ ! -e x.pm ]
 pm-build --force -q h1.pm h2.pm -o x.pm 2>force.err
 check "--force merges different scenes" [ "$(pm-dump --stats x.pm | sed -n 's/^photons: //p')" = 20 ]
 check "--force -q is quiet" [ ! -s force.err ]
 pm-build --force h1.pm h2.pm -o x.pm 2>force.err
-check "--force warns" grep -q "^pm-build: 'h2.pm': scene hash 0000000000000002 differs" force.err
+check "--force warns" grep -q "^pm-build: 'h2.pm': light_hash 0000000000000002 differs" force.err
 "$mk" -n 10 -H 1 -t 0.5 -o t5.pm
 expect_fail "different times refused" 1 "^pm-build: 't5.pm': time 0.5 differs from 'h1.pm' (0); --force merges anyway$" pm-build h1.pm t5.pm -o x.pm
 

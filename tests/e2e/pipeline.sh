@@ -77,6 +77,11 @@ pm-render -e classical --force box2.pms map1.pm -o x.exr 2>/dev/null
 check "--force renders anyway" test -s x.exr
 expect_fail "a photon file is not a map" 1 "run it through pm-build" \
 	pm-render -e classical box.pms shot1.pm -o y.exr
+expect_fail "a map where the scene belongs: the order is said" 1 \
+	"^pm-render: 'map1.pm': a photon file where the scene belongs: the order is SCENE MAP$" \
+	pm-render map1.pm box.pms -o y.exr
+expect_fail "pm-shoot given a photon file as its scene says so" 1 \
+	"^pm-shoot: 'map1.pm': a photon file, not a scene$" pm-shoot map1.pm -o z.pm
 expect_fail "missing scene named" 1 "nonexistent.pms" pm-shoot nonexistent.pms -o z.pm
 expect_fail "estimator needs a map" 2 "needs a photon map" pm-render -e classical box.pms -o y.exr
 

@@ -65,7 +65,7 @@ LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 	require(pm_photons_read(&b, f, "again.pm", &err) == 0, "a rewritten file is refused");
 	fclose(f);
 	require(a.h.count == b.h.count && a.h.emitted == b.h.emitted &&
-	        a.h.kdtree == b.h.kdtree && a.h.scene_hash == b.h.scene_hash &&
+	        a.h.kdtree == b.h.kdtree && a.h.light_hash == b.h.light_hash &&
 	        memcmp(&a.h.time, &b.h.time, sizeof a.h.time) == 0 &&
 	        strcmp(a.h.seeds, b.h.seeds) == 0, "header changed in a round trip");
 	require(!a.h.history == !b.h.history &&

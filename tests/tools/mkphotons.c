@@ -19,7 +19,7 @@
 static const char usage[] =
 	"usage: mkphotons [-h] [-e EMITTED] [-H HASH] [-n N] [-o FILE] [-p AXIS=VALUE]... [-s SEED] [-t TIME]\n"
 	"  -e EMITTED     emitted paths recorded in the header (default: N, at least 1)\n"
-	"  -H HASH        scene hash, 16 hex digits (default: 00000000000000aa)\n"
+	"  -H HASH        light_hash, 16 hex digits (default: 00000000000000aa)\n"
 	"  -n N           photons (default: 1000)\n"
 	"  -o FILE        output, '-' for stdout (default: -)\n"
 	"  -p AXIS=VALUE  a plane, e.g. y=0; repeatable (default: y=0)\n"
@@ -101,7 +101,7 @@ main(int argc, char **argv)
 	ph.h.version = PM_PHOTONS_VERSION;
 	ph.h.count = n;
 	ph.h.emitted = emitted ? emitted : n ? n : 1;
-	ph.h.scene_hash = hash;
+	ph.h.light_hash = hash;
 	ph.h.time = t;
 	snprintf(ph.h.seeds, sizeof ph.h.seeds, "%llu", seed);
 	ph.p = malloc((n ? n : 1) * sizeof *ph.p);

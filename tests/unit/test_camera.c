@@ -1,4 +1,4 @@
-/* test_camera.c — the camera conventions of DESIGN.md. */
+/* test_camera.c — the camera conventions of formats/scene.md. */
 #include <math.h>
 
 #include "camera.h"

@@ -247,7 +247,7 @@ sample(int n)
 	ph.h.version = 1;
 	ph.h.count = (uint64_t)n;
 	ph.h.emitted = 1000;
-	ph.h.scene_hash = 0x0123456789abcdefull;
+	ph.h.light_hash = 0x0123456789abcdefull;
 	ph.h.time = 0.1;
 	snprintf(ph.h.seeds, sizeof ph.h.seeds, "7,8");
 	ph.p = calloc((size_t)n + 1, sizeof *ph.p);
@@ -282,7 +282,7 @@ TEST(file_round_trip)
 				hi[k] = fmaxf(hi[k], a.p[i].pos[k]);
 			}
 		CHECK(b.h.version == 1 && b.h.kdtree == 0 && b.h.count == 1000 && b.h.emitted == 1000);
-		CHECK(b.h.scene_hash == 0x0123456789abcdefull && b.h.time == 0.1);
+		CHECK(b.h.light_hash == 0x0123456789abcdefull && b.h.time == 0.1);
 		CHECKF(strcmp(b.h.seeds, "7,8") == 0, "seeds '%s'", b.h.seeds);
 		CHECKF(strcmp(b.h.history, "pm-shoot -s 7 scene.pms\npm-shoot -s 8 'my scene.pms'") == 0,
 		       "history '%s'", b.h.history);
@@ -318,7 +318,7 @@ mkfile(const char *key, const char *line, int nrec, int extra, const pm_photon *
 {
 	static const char *base[] = {
 		"version=1", "endian=little", "record_size=20", "kdtree=0", "count=3",
-		"emitted=10", "bbox=0 0 0 1 1 1", "scene_hash=00000000000000ff",
+		"emitted=10", "bbox=0 0 0 1 1 1", "light_hash=00000000000000ff",
 		"time=0", "seeds=1", "command=mkphotons",
 	};
 	size_t n = 0;
@@ -418,7 +418,10 @@ TEST(reader_refusals)
 	REFUSE(mkfile("bbox", "bbox=0 0 0 1 0.3 1", 3, 0, NULL), "x.pm", "photon 2 lies outside the header's bbox");
 	REFUSE(mkfile("bbox", "bbox=0 0 0 1 1 -1", 3, 0, NULL), "x.pm", "bbox minimum exceeds maximum");
 	REFUSE(mkfile("time", "time=nan", 3, 0, NULL), "x.pm", "time 'nan' is not finite");
-	REFUSE(mkfile("scene_hash", "scene_hash=123", 3, 0, NULL), "x.pm", "bad scene_hash '123'");
+	REFUSE(mkfile("light_hash", "light_hash=123", 3, 0, NULL), "x.pm", "bad light_hash '123'");
+	/* a file of the pm before light_hash hashed the scene file's bytes */
+	REFUSE(mkfile("light_hash", "scene_hash=00000000000000ff", 3, 0, NULL), "x.pm",
+	       "'x.pm': photon file of an older pm (it records scene_hash, not light_hash): shoot it again");
 	REFUSE(mkfile("kdtree", "kdtree=2", 3, 0, NULL), "x.pm", "bad kdtree '2'");
 	REFUSE(mkfile("seeds", "seeds=1;rm", 3, 0, NULL), "x.pm", "bad seeds");
 	REFUSE(mkfile("time", "time", 3, 0, NULL), "x.pm", "expected key=value");

@@ -1,7 +1,8 @@
 /* test_scene.c — the scene loader: shapes, normals, transforms, meshes through
- * OpenMesh, triangulation, motion, the scene hash, error messages, and the
+ * OpenMesh, triangulation, motion, the scene identities, error messages, and the
  * bundled example scenes. Scenes are written to a private temporary directory. */
 #include <math.h>
+#include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -355,55 +356,140 @@ TEST(materials_strong_and_soft)
 	pm_scene_free(&s);
 }
 
-static uint64_t
-fnv(uint64_t h, const char *path)
-{
-	FILE *f = fopen(path, "rb");
-	int c;
-	while (f && (c = getc(f)) != EOF)
-		h = (h ^ (unsigned char)c) * 1099511628211ull;
-	if (f)
-		fclose(f);
-	return h;
-}
-
-TEST(hash)
+/* The light and view identities of a scene text (meshes as put before). */
+static int
+ids(const char *text, uint64_t *light, uint64_t *view)
 {
 	pm_scene s;
-	pm_error err;
-	const char *text = HEAD "mesh plane.obj white\nmesh cube.obj white translate 3 0 0\n";
-	const char *path;
-	uint64_t h1, h2, h3;
+	pm_error err = {""};
+	int r = pm_scene_load(&s, put("h.pms", text), &err);
+	CHECKF(r == 0, "load failed: %s", err.msg);
+	*light = r ? 0 : s.light_hash;
+	*view = r ? 0 : s.view_hash;
+	if (r == 0)
+		pm_scene_free(&s);
+	return r;
+}
+
+#define ID_GLOSSY "material satin glossy kd 0.5 0.5 0.5 ks 0.3 0.3 0.3 exponent 20\n"
+#define ID_BODY ID_GLOSSY "mesh plane.obj white\nmesh cube.obj satin translate 3 0 0\n"
+
+/* Comments, white space, number spellings, material names and the camera do
+ * not enter the light identity; every value the photons depend on does. */
+TEST(identity)
+{
+	static const char *same_light[] = {
+		/* comments, blank lines, tabs, spellings of the same float */
+		"# a comment\n" CAMERA "\n" LIGHT "\t" WHITE ID_BODY "  # trailing\n",
+		CAMERA "pointlight 0.0 5e0 0 power 10.00 1e1 10\n" WHITE ID_BODY,
+		/* another name for the same material */
+		CAMERA LIGHT "material blanc diffuse albedo 0.5 0.5 0.5\n" ID_GLOSSY
+			"mesh plane.obj blanc\nmesh cube.obj satin translate 3 0 0\n",
+	};
+	static const char *other_light[] = {
+		CAMERA LIGHT "material white diffuse albedo 0.5 0.6 0.5\n" ID_BODY,   /* albedo */
+		CAMERA "pointlight 0 5 0 power 10 10 11\n" WHITE ID_BODY,             /* light power */
+		CAMERA "pointlight 0 5.001 0 power 10 10 10\n" WHITE ID_BODY,         /* light position */
+		HEAD ID_GLOSSY "mesh plane.obj white\nmesh cube.obj satin translate 3 0 0.001\n",
+		HEAD ID_GLOSSY "mesh plane.obj white\nmesh cube.obj white translate 3 0 0\n",
+		"glossy_threshold 15\n" HEAD ID_BODY,                                 /* satin turns strong */
+		"glossy_threshold 50\n" HEAD ID_BODY,                                 /* satin stays soft */
+	};
+	const char *base = HEAD ID_BODY;
+	uint64_t l0, v0, l, v;
 
 	put("plane.obj", "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3\nf 1 3 4\n");
 	put("cube.obj", CUBE_OBJ);
-	path = put("h.pms", text);
+	if (ids(base, &l0, &v0))
+		return;
+	CHECK(ids(base, &l, &v) == 0 && l == l0 && v == v0);
+	for (size_t i = 0; i < sizeof same_light / sizeof *same_light; i++)
+		if (ids(same_light[i], &l, &v) == 0)
+			CHECKF(l == l0 && v == v0, "case %zu: light %016llx view %016llx, want %016llx %016llx", i,
+			       (unsigned long long)l, (unsigned long long)v, (unsigned long long)l0,
+			       (unsigned long long)v0);
+	for (size_t i = 0; i < sizeof other_light / sizeof *other_light; i++)
+		if (ids(other_light[i], &l, &v) == 0)
+			CHECKF(l != l0 && v != v0, "case %zu: identity unchanged", i);
+
+	/* the camera: the same light pass, another view */
+	char cam[4096];
+	snprintf(cam, sizeof cam, "%s%s", "camera eye 0 0 9 look 0 0 0 up 0 1 0 fov 40 size 64 48\n",
+	         LIGHT WHITE ID_BODY);
+	if (ids(cam, &l, &v) == 0)
+		CHECK(l == l0 && v != v0);
+
+	/* a mesh file: a comment in it does not count, a moved vertex does */
+	put("plane.obj", "# exported\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3\nf 1 3 4\n");
+	if (ids(base, &l, &v) == 0)
+		CHECK(l == l0 && v == v0);
+	put("plane.obj", "v 0 0 0\nv 1 0 0\nv 1 1.5 0\nv 0 1 0\nf 1 2 3\nf 1 3 4\n");
+	if (ids(base, &l, &v) == 0)
+		CHECK(l != l0 && v != v0);
+}
+
+/* formats/scene.md's byte sequence for the identities, written out by hand
+ * for one small scene: the page, not only the code, says what is hashed. */
+static uint64_t spec_h;
+static void
+spec_u32(uint32_t v)
+{
+	for (int i = 0; i < 4; i++)
+		spec_h = (spec_h ^ ((v >> (8 * i)) & 0xff)) * 1099511628211ull;
+}
+static void
+spec_f32s(int n, ...)
+{
+	va_list ap;
+	va_start(ap, n);
+	for (int i = 0; i < n; i++) {
+		float f = (float)va_arg(ap, double);
+		uint32_t u;
+		memcpy(&u, &f, 4);
+		spec_u32(u);
+	}
+	va_end(ap);
+}
+
+TEST(identity_as_documented)
+{
+	pm_scene s;
+	pm_error err = {""};
+	const char *path = put("spec.pms", CAMERA LIGHT WHITE "triangle white 0 0 0  1 0 0  0 1 0\n");
+
 	if (pm_scene_load(&s, path, &err)) {
 		CHECKF(0, "%s", err.msg);
 		return;
 	}
-	h1 = s.hash;
-	char p1[300], p2[300];
-	snprintf(p1, sizeof p1, "%s/plane.obj", dir);
-	snprintf(p2, sizeof p2, "%s/cube.obj", dir);
-	uint64_t want = fnv(fnv(fnv(14695981039346656037ull, path), p1), p2);
-	CHECKF(h1 == want, "hash %016llx, want %016llx", (unsigned long long)h1, (unsigned long long)want);
-	pm_scene_free(&s);
+	spec_h = 14695981039346656037ull;
+	spec_f32s(1, 100.0);                                   /* glossy threshold */
+	spec_u32(1);                                           /* materials */
+	spec_u32(0);                                           /* diffuse */
+	spec_f32s(3, 0.5, 0.5, 0.5);                           /* albedo */
+	spec_f32s(3, 1.0, 1.0, 1.0);                           /* ks: not given */
+	spec_f32s(2, 0.0, 0.0);                                /* exponent, ior */
+	spec_f32s(3, 0.0, 0.0, 0.0);                           /* emit */
+	spec_u32(0);                                           /* not twosided */
+	spec_u32(1);                                           /* objects */
+	spec_u32(0), spec_u32(0);                              /* material 0, a sheet */
+	spec_f32s(3, 0.0, 0.0, 0.0);                           /* move */
+	spec_u32(1), spec_u32(3);                              /* polygons, vertices */
+	spec_u32(1);                                           /* point lights */
+	spec_f32s(9, 0.0, 5.0, 0.0, 10.0, 10.0, 10.0, 0.0, 0.0, 0.0);
+	spec_u32(3);                                           /* vertices */
+	spec_f32s(9, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0, 0.0);
+	spec_u32(1);                                           /* polygons */
+	spec_u32(3), spec_u32(0), spec_u32(1), spec_u32(2);
+	uint64_t light = spec_h;
+	CHECKF(s.light_hash == light, "light_hash %016llx, documented %016llx",
+	       (unsigned long long)s.light_hash, (unsigned long long)light);
 
-	put("plane.obj", "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3\nf 1 3 4\n# changed\n");
-	CHECK(pm_scene_load(&s, path, &err) == 0);
-	h2 = s.hash;
-	pm_scene_free(&s);
-	CHECK(h2 != h1);
-
-	char t2[4096];
-	snprintf(t2, sizeof t2, "%s# a comment\n", text);
-	path = put("h.pms", t2);
-	CHECK(pm_scene_load(&s, path, &err) == 0);
-	h3 = s.hash;
-	pm_scene_free(&s);
-	CHECK(h3 != h2 && h3 != h1);
-	CHECK(pm_scene_load(&s, path, &err) == 0 && s.hash == h3);
+	spec_h = 14695981039346656037ull;
+	spec_u32((uint32_t)light), spec_u32((uint32_t)(light >> 32));
+	spec_f32s(10, 0.0, 0.0, 10.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 40.0);
+	spec_u32(64), spec_u32(48);
+	CHECKF(s.view_hash == spec_h, "view identity %016llx, documented %016llx",
+	       (unsigned long long)s.view_hash, (unsigned long long)spec_h);
 	pm_scene_free(&s);
 }
 
@@ -572,7 +658,8 @@ main(void)
 	RUN(nonplanar_face_split);
 	RUN(motion);
 	RUN(materials_strong_and_soft);
-	RUN(hash);
+	RUN(identity);
+	RUN(identity_as_documented);
 	RUN(malformed_scenes);
 	RUN(example_cornell);
 	RUN(example_room);
