@@ -13,6 +13,7 @@
 #include <strings.h>
 #include <sys/stat.h>
 
+#include "fnv.h"
 #include "mesh.h"
 #include "scene_poly.h"
 #include "scene_shape.h"
@@ -27,9 +28,6 @@
 #define MAX_POLYS (1u << 28)
 #define MAX_TRIS (1u << 28)
 #define MAX_POLY_VERTS (1u << 30)   /* polygon corners in all */
-
-#define FNV_OFFSET 14695981039346656037ull
-#define FNV_PRIME 1099511628211ull
 
 /* One affine map x -> m[0..2][0..2] x + m[.][3]. */
 typedef struct { double m[3][4]; } xform;
@@ -802,17 +800,6 @@ st_sphere(parser *p)
 	return r;
 }
 
-/* FNV-1a, 64-bit (Fowler, Noll, Vo). */
-static uint64_t
-fnv1a(uint64_t h, const unsigned char *b, size_t n)
-{
-	for (size_t i = 0; i < n; i++) {
-		h ^= b[i];
-		h *= FNV_PRIME;
-	}
-	return h;
-}
-
 static int
 hash_file(const char *path, uint64_t *h, pm_error *err)
 {
@@ -822,7 +809,7 @@ hash_file(const char *path, uint64_t *h, pm_error *err)
 	if (!f)
 		return pm_seterr(err, "'%s': cannot read mesh: %s", path, strerror(errno));
 	while ((n = fread(buf, 1, sizeof buf, f)) > 0)
-		*h = fnv1a(*h, buf, n);
+		*h = pm_fnv1a(*h, buf, n);
 	int bad = ferror(f);
 	fclose(f);
 	if (bad)
@@ -991,10 +978,10 @@ pm_scene_load(pm_scene *s, const char *path, pm_error *err)
 	p.err = err;
 	p.path = path;
 	s->glossy_threshold = 100;
-	s->hash = FNV_OFFSET;
+	s->hash = PM_FNV_OFFSET;
 	if (read_file(path, &data, &len, err))
 		return -1;
-	s->hash = fnv1a(s->hash, (const unsigned char *)data, len);
+	s->hash = pm_fnv1a(s->hash, data, len);
 	s->path = strdup(path);
 	const char *slash = strrchr(path, '/');
 	size_t dl = slash ? (size_t)(slash - path) + 1 : 0;
