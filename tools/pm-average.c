@@ -1,7 +1,9 @@
 /* pm-average — averages pass images (or earlier averages) weighted by their
  * pass counts, keeping per-pixel M2 so averages of averages are exact and
  * the spread gives a standard error (lib/average.h, formats/image.md).
- * Reads one input at a time: memory is O(image), not O(inputs). */
+ * Reads one input at a time: memory is O(image), not O(inputs), but for
+ * the inputs' pass ids (16 bytes a pass), checked for repeats once all are
+ * read (lib/passid.h). */
 #include <getopt.h>
 #include <inttypes.h>
 #include <stdio.h>

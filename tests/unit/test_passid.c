@@ -24,6 +24,7 @@ TEST(id_hashes_the_documented_text)
 	uint64_t want = pm_fnv1a(PM_FNV_OFFSET, text, strlen(text));
 
 	CHECK(pm_pass_id(255, "compensated", 42, 0.25f, "1,2") == want);
+	CHECK(want == 0xcde406dc23017600ull);    /* formats/image.md's example */
 	text = "a86508990a730cb9 path 18446744073709551615 0.123456791 ";
 	want = pm_fnv1a(PM_FNV_OFFSET, text, strlen(text));
 	CHECK(pm_pass_id(0xa86508990a730cb9ull, "path", UINT64_MAX, 0.123456789f, "") == want);
