@@ -42,6 +42,9 @@ _progress_line() {
 # The watcher, in the background: $1 passes, label $2, started at $3, log
 # $4, the script's pid $5 (it stops if the script is gone).
 _progress_watch() {
+	# The scripts run with set -e; a failed look must not end the watcher
+	# before its last line (a sleep already over cannot be killed, say).
+	set +e
 	_n=$1 _label=$2 _t0=$3 _log=$4 _pid=$5
 	_tty=0 _shown=-1 _last=$3 _sleep=
 	[ -t 2 ] && _tty=1
