@@ -19,6 +19,9 @@
 # OUT/round-R.exr (the round's average), OUT/image.exr (the running average),
 # OUT/round-R.png and OUT/image.png (previews); prints one line per round:
 #   round R: passes P mean_stderr S mean M relative X
+# and on stderr the progress of each round's passes, and at the end one
+# summary line: passes, seconds, relative standard error
+# (examples/fanout/progress.sh).
 # Exit status: 0 when the target is reached, 1 if ROUNDS rounds did not reach
 # it (image.exr then holds every pass run), 2 for a bad command line.
 set -eu
@@ -27,22 +30,23 @@ if [ $# -ne 2 ]; then
 	exit 2
 fi
 top=$(cd "$(dirname "$0")/.." && pwd)
-scene=$1 target=$2
+scene=$(cd "$(dirname "$1")" && pwd)/$(basename "$1") target=$2
 awk -v t="$target" 'BEGIN { exit !(t + 0 > 0) }' || { echo "progressive.sh: TARGET '$target' is not a number > 0" >&2; exit 2; }
 bin=${PM_BIN:-$top/build/bin}
 FIRST=${FIRST:-2} ROUNDS=${ROUNDS:-8} P=${P:-$(nproc)}
 out=${OUT:-$top/examples/out/progressive}
 [ "$FIRST" -ge 2 ] || { echo "progressive.sh: FIRST must be at least 2" >&2; exit 2; }
-export bin scene PHOTONS=${PHOTONS:-100000} SPP=${SPP:-4} K=${K:-50} EST=${EST:-compensated}
+export PM_BIN="$bin" PHOTONS=${PHOTONS:-100000} SPP=${SPP:-4} K=${K:-50} EST=${EST:-compensated}
+. "$top/examples/fanout/progress.sh"
 mkdir -p "$out"
 rm -f "$out/image.exr"
 n=$FIRST r=1
 while [ "$r" -le "$ROUNDS" ]; do
-	mkdir -p "$out/round-$r"
-	export n dir="$out/round-$r"
-	seq 1 "$n" | xargs -P "$P" -I{} sh -c '
-		"$bin/pm-shoot" -q -j 1 -n "$PHOTONS" -P {}/"$n" "$scene" | "$bin/pm-build" -q -j 1 |
-		"$bin/pm-render" -q -j 1 -e "$EST" -k "$K" -p "$SPP" -P {}/"$n" "$scene" - -o "$dir/pass-{}.exr"'
+	dir=$out/round-$r
+	mkdir -p "$dir"
+	progress_begin "$n" "round $r"
+	(cd "$dir" && seq 1 "$n" | xargs -P "$P" -I{} sh "$top/examples/fanout/pass.sh" {} "$n" "$scene")
+	progress_end
 	"$bin/pm-average" -q $(seq -f "$dir/pass-%g.exr" 1 "$n") -o "$out/round-$r.exr"
 	if [ -e "$out/image.exr" ]; then
 		# pm-average refuses to write over an input: a new file, then a rename.
@@ -60,9 +64,11 @@ while [ "$r" -le "$ROUNDS" ]; do
 	echo "$line"
 	if echo "$line" | awk -v t="$target" '{ exit !(NF == 10 && $NF < t) }'; then
 		echo "target $target reached: $out/image.exr, preview $out/image.png"
+		progress_summary progressive.sh "$out/image.exr"
 		exit 0
 	fi
 	n=$((n * 2)) r=$((r + 1))
 done
+progress_summary progressive.sh "$out/image.exr"
 echo "progressive.sh: target $target not reached after $ROUNDS rounds; $out/image.exr has them all" >&2
 exit 1

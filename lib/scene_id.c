@@ -5,17 +5,14 @@
 
 #include <string.h>
 
-#define FNV_OFFSET 14695981039346656037ull
-#define FNV_PRIME 1099511628211ull
+#include "fnv.h"
 
 static uint64_t
 put_u32(uint64_t h, uint32_t v)
 {
-	for (int i = 0; i < 4; i++) {
-		h ^= (v >> (8 * i)) & 0xffu;
-		h *= FNV_PRIME;
-	}
-	return h;
+	unsigned char b[4] = {(unsigned char)v, (unsigned char)(v >> 8), (unsigned char)(v >> 16),
+	                      (unsigned char)(v >> 24)};
+	return pm_fnv1a(h, b, sizeof b);
 }
 
 /* A float by its bits, with -0 taken as +0 (they compare equal and light
@@ -38,7 +35,7 @@ put_vec(uint64_t h, pm_vec3 v)
 static uint64_t
 light_identity(const pm_scene *s)
 {
-	uint64_t h = FNV_OFFSET;
+	uint64_t h = PM_FNV_OFFSET;
 
 	h = put_f32(h, s->glossy_threshold);
 	h = put_u32(h, (uint32_t)s->nmats);
@@ -81,7 +78,7 @@ pm_scene_identify(pm_scene *s)
 	uint64_t h;
 
 	s->light_hash = light_identity(s);
-	h = put_u32(put_u32(FNV_OFFSET, (uint32_t)s->light_hash), (uint32_t)(s->light_hash >> 32));
+	h = put_u32(put_u32(PM_FNV_OFFSET, (uint32_t)s->light_hash), (uint32_t)(s->light_hash >> 32));
 	h = put_vec(put_vec(put_vec(h, c->eye), c->look), c->up);
 	h = put_f32(h, c->fov);
 	s->view_hash = put_u32(put_u32(h, (uint32_t)c->width), (uint32_t)c->height);

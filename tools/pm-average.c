@@ -1,14 +1,18 @@
 /* pm-average — averages pass images (or earlier averages) weighted by their
  * pass counts, keeping per-pixel M2 so averages of averages are exact and
  * the spread gives a standard error (lib/average.h, formats/image.md).
- * Reads one input at a time: memory is O(image), not O(inputs). */
+ * Reads one input at a time: memory is O(image), not O(inputs), but for
+ * the inputs' pass ids (16 bytes a pass), checked for repeats once all are
+ * read (lib/passid.h). */
 #include <getopt.h>
+#include <inttypes.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "average.h"
 #include "image.h"
+#include "passid.h"
 #include "progress.h"
 #include "util.h"
 
@@ -18,7 +22,8 @@ static void
 help(void)
 {
 	printf("usage: %s\n"
-	       "  -f, --force     average despite differing pm.scene_hash (default: refuse)\n"
+	       "  -f, --force     average despite differing pm.scene_hash or pm.estimator,\n"
+	       "                  or a pass given twice (default: refuse)\n"
 	       "  -h, --help      print this help and exit\n"
 	       "  -o, --output F  write the average to the EXR file F, - for stdout\n"
 	       "                  (default: none)\n"
@@ -36,10 +41,60 @@ static const char *const agreed[] = {
 };
 enum { NAGREED = sizeof agreed / sizeof agreed[0] };
 
+/* What --force overrode, recorded in pm.forced and inherited from inputs,
+ * so that an average's provenance survives further averaging. */
+static const char *const forced_word[] = { "scene_hash", "estimator", "duplicates" };
+enum { NFORCED = sizeof forced_word / sizeof forced_word[0] };
+
 static int
 same(const char *a, const char *b)
 {
 	return a == b || (a && b && strcmp(a, b) == 0);
+}
+
+static unsigned
+forced_flags(const char *s)
+{
+	unsigned f = 0;
+
+	for (int k = 0; s && k < NFORCED; k++) {
+		size_t n = strlen(forced_word[k]);
+		for (const char *p = strstr(s, forced_word[k]); p; p = strstr(p + 1, forced_word[k]))
+			if ((p == s || p[-1] == ' ') && (p[n] == 0 || p[n] == ' '))
+				f |= 1u << k;
+	}
+	return f;
+}
+
+static void
+set_forced(pm_image *img, unsigned f)
+{
+	char buf[64] = "";
+	pm_error err;
+
+	for (int k = 0; k < NFORCED; k++)
+		if (f & 1u << k)
+			snprintf(buf + strlen(buf), sizeof buf - strlen(buf), "%s%s", *buf ? " " : "", forced_word[k]);
+	if (*buf && pm_image_set_attr(img, "pm.forced", buf, &err))
+		die_err(&err);
+}
+
+/* Refuses input path (a name as shown_name gives it) whose value v of an attribute that inputs must share
+ * differs from rv, input ref's, unless forced: then warns (the first time)
+ * and records the override as bit k of *overrode. */
+static void
+must_agree(int k, const char *what, const char *path, const char *v, const char *ref,
+           const char *rv, int force, int quiet, unsigned *overrode)
+{
+	if (same(v, rv))
+		return;
+	if (!force)
+		die("%s: %s %s differs from %s (%s)%s", path, what, v ? v : "(none)",
+		    ref, rv ? rv : "(none)", k ? "; --force averages anyway" : "");
+	if (!quiet && !(*overrode & 1u << k))
+		warn("%s: %s %s differs from %s (%s); averaging anyway",
+		     path, what, v ? v : "(none)", ref, rv ? rv : "(none)");
+	*overrode |= 1u << k;
 }
 
 int
@@ -53,11 +108,15 @@ main(int argc, char **argv)
 		{ "stats", no_argument, NULL, 's' },
 		{ NULL, 0, NULL, 0 },
 	};
-	const char *outpath = NULL, *first = NULL;
-	char firstnm[300];
+	const char *outpath = NULL, *first = NULL, *est_ref = NULL;
+	char firstnm[300], est_refnm[300];
+	char *est = NULL;
 	char *value[NAGREED] = { NULL };
 	int agree[NAGREED];
-	int force = 0, quiet = 0, stats = 0, opt, ndropped = 0;
+	int force = 0, quiet = 0, stats = 0, opt, ndropped = 0, all_ids = 1, da, db;
+	unsigned forced = 0, overrode = 0;
+	uint64_t dup;
+	pm_passids ids;
 	char (*dropped)[PM_CHAN_NAME] = NULL;
 	pm_error err;
 	pm_avg avg;
@@ -87,6 +146,7 @@ main(int argc, char **argv)
 	else
 		check_stdin_once(usage, argv + optind, argc - optind);
 	pm_avg_init(&avg);
+	pm_passids_init(&ids);
 	progress_start(&bar, "images", (uint64_t)(argc - optind), quiet);
 	for (int i = optind; i < argc; i++) {
 		char nm[300];
@@ -98,6 +158,26 @@ main(int argc, char **argv)
 			die_err(&err);
 		if (pm_image_passes(&img, &passes, &err))
 			die("%s: %s", path, err.msg);
+		if (pm_image_attr(&img, "pm.pass_ids")) {
+			size_t n;
+			if (pm_passids_add(&ids, pm_image_attr(&img, "pm.pass_ids"), i, &n, &err))
+				die("%s: %s", path, err.msg);
+			if ((double)n != passes)
+				die("%s: pm.pass_ids has %zu ids but pm.passes is %.0f", path, n, passes);
+		} else {
+			all_ids = 0;    /* older files: accepted, but the list is incomplete */
+		}
+		forced |= forced_flags(pm_image_attr(&img, "pm.forced"));
+		/* Inputs that name their estimator must name the same one;
+		 * files that do not (older or foreign ones) are accepted. */
+		if (pm_image_attr(&img, "pm.estimator") && !est_ref) {
+			est_ref = strcpy(est_refnm, path);
+			if (!(est = strdup(pm_image_attr(&img, "pm.estimator"))))
+				die("out of memory");
+		} else if (pm_image_attr(&img, "pm.estimator")) {
+			must_agree(1, "estimator", path, pm_image_attr(&img, "pm.estimator"), est_ref, est,
+			           force, quiet, &overrode);
+		}
 		if (!first) {
 			first = strcpy(firstnm, path);
 			/* Later inputs can only drop channels this one has. */
@@ -109,18 +189,11 @@ main(int argc, char **argv)
 				agree[k] = !v || value[k];
 			}
 		} else {
-			const char *hash = pm_image_attr(&img, "pm.scene_hash");
 			if (img.width != avg.width || img.height != avg.height)
 				die("%s: size %dx%d differs from %s (%dx%d)", path,
 				    img.width, img.height, first, avg.width, avg.height);
-			if (!same(hash, value[0])) {
-				if (!force)
-					die("%s: scene hash %s differs from %s (%s)", path,
-					    hash ? hash : "(none)", first, value[0] ? value[0] : "(none)");
-				if (!quiet && agree[0])
-					warn("%s: scene hash %s differs from %s (%s); averaging anyway",
-					     path, hash ? hash : "(none)", first, value[0] ? value[0] : "(none)");
-			}
+			must_agree(0, "scene hash", path, pm_image_attr(&img, agreed[0]), first, value[0],
+			           force, quiet, &overrode);
 			for (int k = 0; k < NAGREED; k++)
 				if (!same(pm_image_attr(&img, agreed[k]), value[k]))
 					agree[k] = 0;
@@ -137,6 +210,22 @@ main(int argc, char **argv)
 		progress_update(&bar, (uint64_t)(i - optind + 1));
 	}
 	progress_end(&bar, (uint64_t)(argc - optind));
+	if (pm_passids_dup(&ids, &dup, &da, &db)) {
+		char what[700], na[300], nb[300];
+		const char *a = shown_name(argv[da], na, sizeof na), *b = shown_name(argv[db], nb, sizeof nb);
+		if (da == db)
+			snprintf(what, sizeof what, "%s holds pass %016" PRIx64 " twice", a, dup);
+		else if (strcmp(argv[da], argv[db]) == 0)
+			snprintf(what, sizeof what, "%s is given twice", a);
+		else
+			snprintf(what, sizeof what, "%s repeats pass %016" PRIx64 " of %s (the same scene, "
+			         "estimator, seeds and time)", b, dup, a);
+		if (!force)
+			die("%s; --force averages anyway", what);
+		if (!quiet)
+			warn("%s; averaging anyway", what);
+		overrode |= 1u << 2;    /* forced_word[2] */
+	}
 
 	if (outpath) {
 		if (pm_avg_image(&avg, &img, &err) ||
@@ -145,6 +234,16 @@ main(int argc, char **argv)
 		for (int k = 0; k < NAGREED; k++)
 			if (agree[k] && value[k] && pm_image_set_attr(&img, agreed[k], value[k], &err))
 				die_err(&err);
+		if (all_ids) {
+			char *list = pm_passids_format(&ids);
+			if (!list || pm_image_set_attr(&img, "pm.pass_ids", list, &err))
+				die("out of memory for pm.pass_ids");
+			free(list);
+		}
+		/* Unlike a missing one, "mixed" differs from every estimator. */
+		if ((overrode & 1u << 1) && pm_image_set_attr(&img, "pm.estimator", "mixed", &err))
+			die_err(&err);
+		set_forced(&img, forced | overrode);
 		if (pm_image_write_exr(&img, outpath, &err))
 			die_err(&err);
 		pm_image_free(&img);
@@ -159,6 +258,8 @@ main(int argc, char **argv)
 	for (int k = 0; k < NAGREED; k++)
 		free(value[k]);
 	free(dropped);
+	free(est);
 	pm_avg_free(&avg);
+	pm_passids_free(&ids);
 	return 0;
 }

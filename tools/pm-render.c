@@ -11,6 +11,7 @@
 #include "image.h"
 #include "light.h"
 #include "pass.h"
+#include "passid.h"
 #include "photon.h"
 #include "render.h"
 #include "scene.h"
@@ -212,6 +213,9 @@ main(int argc, char **argv)
 	setattr(&img, "pm.estimator", pm_estimator_name(o.estimator));
 	snprintf(buf, sizeof buf, "%d", o.k);
 	setattr(&img, "pm.k", buf);
+	snprintf(buf, sizeof buf, "%016" PRIx64, pm_pass_id(s.view_hash, pm_estimator_name(o.estimator),
+	                                                     o.seed, time, map.h.seeds));
+	setattr(&img, "pm.pass_ids", buf);
 	if (pm_image_write_exr(&img, out, &err) != 0)
 		die_err(&err);
 

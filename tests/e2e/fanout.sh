@@ -10,6 +10,7 @@ export PM_BIN PHOTONS=4000 SPP=2 N=8 P=2
 for way in serial xargs parallel make; do
 	sh "$ex/$way.sh" "$ex/scene.pms" "$way" >"$way.log" 2>&1
 	check "fan-out $way runs" test $? -eq 0 -a -s "$way/average.exr"
+	check "fan-out $way ends with a summary line" grep -q "^$way.sh: 8 passes, [0-9.]* s, relative standard error " "$way.log"
 done
 for way in xargs parallel make; do
 	check "fan-out $way average byte-identical to serial" cmp -s serial/average.exr "$way/average.exr"

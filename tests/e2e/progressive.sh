@@ -30,6 +30,8 @@ for r in 1 2 3; do
 done
 pm-average --stats run/image.exr >s.txt
 check "the running average holds 2+4+8 passes" test "$(kv s.txt passes)" = 14
+check "... 14 distinct ones, by their pass ids" \
+	test "$("$PM_BIN/../tests/tools/exrattr" run/image.exr pm.pass_ids | tr ' ' '\n' | sort -u | wc -l)" -eq 14
 pm-average -q run/round-1/pass-*.exr run/round-2/pass-*.exr run/round-3/pass-*.exr -o flat.exr
 pm-diff run/image.exr flat.exr >d.txt
 num_near "running average = flat average of all 14 passes" "$(kv d.txt max_abs)" 0 1e-5
