@@ -1,10 +1,9 @@
 # cluster.sh — a throwaway one-node SLURM cluster for the tests in
 # tests/cluster/ (make check-cluster); sourced after tests/lib.sh. Runs as
 # root: munged with its own key and socket, slurmctld and slurmd in the
-# foreground in the background, every file in one temporary directory, the
-# ports found free. Nothing outside that directory is read or changed (the
-# daemons do read /etc/passwd and /etc/group).
-#   cluster_up     start it; exports SLURM_CONF for sbatch, squeue, sacct,
+# foreground as children of the test, on two free ports, with their
+# configuration, state, spool, pid and log files in one temporary directory.
+#   cluster_up     start it; exports SLURM_CONF for sbatch, squeue, scancel,
 #                  scontrol; 0 when the node takes jobs, else 1 with the
 #                  daemons' last log lines on stderr
 #   cluster_down   cancel every job, stop the daemons, remove the directory
@@ -40,11 +39,12 @@ cluster_up() {
 	munged -F --socket="$c/munge.sock" --key-file="$c/munge.key" \
 		--pid-file="$c/munged.pid" --seed-file="$c/munged.seed" \
 		--log-file="$c/munged.log" 2>>"$c/munged.err" &
-	cluster_pids=$!
+	m=$!
+	cluster_pids=$m
 	n=0
 	until [ -S "$c/munge.sock" ]; do
 		n=$((n + 1))
-		[ $n -le 50 ] && kill -0 "$cluster_pids" 2>/dev/null || {
+		[ $n -le 50 ] && kill -0 "$m" 2>/dev/null || {
 			echo "cluster.sh: munged did not start" >&2; cluster_log; return 1; }
 		sleep 0.1
 	done
@@ -88,11 +88,19 @@ EOF
 	: >"$c/plugstack.conf"
 	export SLURM_CONF="$c/slurm.conf"
 	slurmctld -D -f "$SLURM_CONF" 2>>"$c/slurmctld.err" &
-	cluster_pids="$cluster_pids $!"
+	ctld=$!
 	slurmd -D -f "$SLURM_CONF" 2>>"$c/slurmd.err" &
-	cluster_pids="$cluster_pids $!"
+	d=$!
+	cluster_pids="$cluster_pids $ctld $d"
 	n=0
 	until sinfo -h -N -o %T 2>/dev/null | grep -qx idle; do
+		for x in "munged $m" "slurmctld $ctld" "slurmd $d"; do
+			set -- $x
+			kill -0 "$2" 2>/dev/null && continue
+			echo "cluster.sh: $1 exited: $(tail -n 1 "$c/$1.err")" >&2
+			cluster_log
+			return 1
+		done
 		n=$((n + 1))
 		[ $n -le 60 ] || {
 			echo "cluster.sh: node $host not idle after 30 s" >&2; cluster_log; return 1; }

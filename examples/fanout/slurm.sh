@@ -33,6 +33,7 @@ here=$(cd "$(dirname "$0")" && pwd)
 scene=$(cd "$(dirname "$1")" && pwd)/$(basename "$1")
 mkdir -p "$2"
 dir=$(cd "$2" && pwd)
+case $dir in *'"'*) echo "slurm.sh: '$dir': sbatch cannot take a '\"' in a path" >&2; exit 1 ;; esac
 
 # q WORD: WORD quoted for sh.
 q() { printf "'%s'" "$(printf '%s' "$1" | sed "s/'/'\\\\''/g")"; }
@@ -41,7 +42,7 @@ q() { printf "'%s'" "$(printf '%s' "$1" | sed "s/'/'\\\\''/g")"; }
 preamble() {
 	echo '#!/bin/sh'
 	echo "#SBATCH --job-name=$1"
-	echo "#SBATCH --chdir=$dir"
+	echo "#SBATCH --chdir=\"$dir\""
 	echo "#SBATCH --output=$2"
 	[ -n "${PARTITION:-}" ] && echo "#SBATCH --partition=$PARTITION"
 	[ -n "${TIME:-}" ] && echo "#SBATCH --time=$TIME"
@@ -84,6 +85,6 @@ watch:   squeue -j $passes,$avg
 A failed task leaves its log and cancels the average. Run only the failed
 indices again, e.g. 3 and 7, then the average after them (NEW is the job id
 the first command prints):
-         sbatch --array=3,7 $dir/pass.sbatch
-         sbatch --dependency=afterok:NEW $dir/average.sbatch
+         sbatch --array=3,7 $(q "$dir/pass.sbatch")
+         sbatch --dependency=afterok:NEW $(q "$dir/average.sbatch")
 EOF

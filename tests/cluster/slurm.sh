@@ -59,20 +59,21 @@ check "all 8 pass images byte-identical to serial" test "$same" -eq 8
 check "the averaging job writes a PNG" sh -c 'head -c 4 good/average.png | grep -q PNG'
 
 # Pass 3 cannot write its image (a directory is in the way): the average
-# never runs. Then index 3 alone and the average, as slurm.sh says.
-mkdir -p bad/pass-3.exr
-sh "$ex/slurm.sh" "$scene" bad >bad.out 2>bad.err
+# never runs. Then index 3 alone and the average, as slurm.sh says (in a
+# directory with a blank in its name, which the job scripts must quote).
+mkdir -p 'bad run'/pass-3.exr
+sh "$ex/slurm.sh" "$scene" 'bad run' >bad.out 2>bad.err
 set -- $(ids bad.out)
 p=${1:-} a=${2:-}
 echo "# broken run: passes job $p, average job $a"
 job_wait "$p" "$a"
 check "the broken run's jobs end" test $? -eq 0
 check "task 3 FAILED" test "$(task_state "$p" 3)" = FAILED
-check "its log says why" grep -q "pm-render: cannot write 'pass-3.exr': Is a directory" "bad/slurm-${p}_3.out"
+check "its log says why" grep -q "pm-render: cannot write 'pass-3.exr': Is a directory" "bad run/slurm-${p}_3.out"
 check "the other 7 tasks COMPLETED" test "$(job_state "$p" | grep -c '^COMPLETED$')" -eq 7
 check "a failed task cancels the averaging job" test "$(job_state "$a")" = CANCELLED
-check "the averaging job never ran" test ! -e "bad/slurm-$a.out" -a ! -e bad/average.exr
-rmdir bad/pass-3.exr
+check "the averaging job never ran" test ! -e "bad run/slurm-$a.out" -a ! -e 'bad run'/average.exr
+rmdir 'bad run'/pass-3.exr
 cmd=$(sed -n 's/^ *sbatch --array=3,7 /sbatch --array=3 /p' bad.out)
 r=$(eval "$cmd" | sed -n 's/^Submitted batch job //p')
 cmd=$(sed -n "s/^ *sbatch --dependency=afterok:NEW /sbatch --dependency=afterok:$r /p" bad.out)
@@ -82,4 +83,4 @@ check "the printed commands resubmit index 3 and the average" test -n "$r" -a -n
 job_wait "$r" "$a"
 check "index 3 alone COMPLETED, then the average" \
 	test "$(job_state "$r")/$(job_state "$a")" = COMPLETED/COMPLETED
-check "the repaired average byte-identical to serial" cmp -s serial/average.exr bad/average.exr
+check "the repaired average byte-identical to serial" cmp -s serial/average.exr 'bad run'/average.exr
