@@ -163,3 +163,12 @@ torture:
 	@$(MAKE) --no-print-directory all-tests
 	@KNOWN=$(KNOWN) sh tests/torture/report.sh $(SCENES) 1 $(TORTURE_OUT)
 .PHONY: torture
+
+# make check-cluster (as root; not part of make check): the SLURM fan-out,
+# examples/fanout/slurm.sh, on a throwaway one-node cluster (tests/cluster/,
+# tests/cluster.sh), at most 15 minutes.
+check-cluster:
+	@sh mk/deps.sh cluster
+	@$(MAKE) --no-print-directory all
+	@PM_SUITE=tests/cluster timeout 900 sh tests/run.sh $(B)
+.PHONY: check-cluster

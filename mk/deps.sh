@@ -12,6 +12,8 @@ fuzz) pkgs="clang libclang-rt-14-dev libomp-dev" ;;
 memcheck) pkgs="valgrind" ;;
 # `deps.sh bench` (make bench, make bench-quick): plots and the kd-tree anchor.
 bench) pkgs="gnuplot-nox libnanoflann-dev" ;;
+# `deps.sh cluster` (make check-cluster): SLURM and its authentication daemon.
+cluster) pkgs="slurm-wlm munge" ;;
 esac
 missing=
 for p in $pkgs; do

@@ -35,7 +35,10 @@ for B in $dirs; do
 	export PM_BIN="$B/bin"
 	tag=
 	[ "$ndirs" -gt 1 ] && tag=" [$(basename "$B")]"
-	for t in "$B"/tests/test_* "$B"/fuzz/replay-* "$top"/tests/e2e/*.sh; do
+	# PM_SUITE=DIR runs DIR/*.sh alone (make check-cluster: tests/cluster).
+	if [ -n "${PM_SUITE:-}" ]; then set -- "$top/$PM_SUITE"/*.sh
+	else set -- "$B"/tests/test_* "$B"/fuzz/replay-* "$top"/tests/e2e/*.sh; fi
+	for t in "$@"; do
 		case "$t" in *.o) continue ;; esac
 		[ -e "$t" ] || continue
 		[ -n "$pat" ] && case "$t" in *"$pat"*) ;; *) continue ;; esac
