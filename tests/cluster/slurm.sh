@@ -69,7 +69,7 @@ echo "# broken run: passes job $p, average job $a"
 job_wait "$p" "$a"
 check "the broken run's jobs end" test $? -eq 0
 check "task 3 FAILED" test "$(task_state "$p" 3)" = FAILED
-check "its log says why" grep -q "pm-render: cannot write 'pass-3.exr': Is a directory" "bad run/slurm-${p}_3.out"
+check "its log says why" grep -q "pm-render: cannot write 'pass-3.exr': that names a directory" "bad run/slurm-${p}_3.out"
 check "the other 7 tasks COMPLETED" test "$(job_state "$p" | grep -c '^COMPLETED$')" -eq 7
 check "a failed task cancels the averaging job" test "$(job_state "$a")" = CANCELLED
 check "the averaging job never ran" test ! -e "bad run/slurm-$a.out" -a ! -e 'bad run'/average.exr
