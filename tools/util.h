@@ -1,5 +1,5 @@
 /* util.h — what every pm program shares: messages, exits, checked number
- * parsing, the command line as a string for file histories.
+ * parsing, output checks, threads.
  *
  * Exit codes: 0 success, 1 a failed run, 2 a bad command line. */
 #ifndef PM_UTIL_H
@@ -51,9 +51,6 @@ void check_output(const char *usage, const char *out, enum out_kind kind,
 
 /* Refuses (usage_err) inputs that name stdin (-) more than once. */
 void check_stdin_once(const char *usage, char *const *inputs, int n);
-
-/* The full command line, shell-quoted where needed; static storage. */
-const char *cmdline(void);
 
 /* Threads: n > 0 as given, 0 for all cores. Sets the OpenMP thread count. */
 void set_threads(int n);
