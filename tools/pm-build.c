@@ -2,7 +2,6 @@
  * (formats/photons.md). Inputs are refused if they come from different
  * scenes or shutter times unless --force. */
 #define _GNU_SOURCE
-#include <errno.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -91,11 +90,9 @@ main(int argc, char **argv)
 	memset(&acc, 0, sizeof acc);
 	for (int i = 0; i < nin; i++) {
 		const char *name = in[i];
-		FILE *f = strcmp(name, "-") == 0 ? stdin : fopen(name, "rb");
+		FILE *f = open_input(name);
 		pm_photons ph;
 
-		if (!f)
-			die("cannot open '%s': %s", name, strerror(errno));
 		if (pm_photons_read(&ph, f, name, &err))
 			die_err(&err);
 		if (f != stdin)

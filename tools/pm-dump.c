@@ -3,7 +3,6 @@
  * photons of a point. Reads through the library's one photon reader; with
  * --header it also shows a pass image's provenance (formats/image.md). */
 #define _GNU_SOURCE
-#include <errno.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -294,9 +293,7 @@ main(int argc, char **argv)
 		pm_image_free(&img);
 		return 0;
 	}
-	f = strcmp(name, "-") == 0 ? stdin : fopen(name, "rb");
-	if (!f)
-		die("cannot open '%s': %s", name, strerror(errno));
+	f = open_input(name);
 	if (pm_photons_read_header(&ph, f, name, &raw, &err))
 		die_err(&err);
 	if (mode != M_HEADER && pm_photons_read_records(&ph, f, name, &err))

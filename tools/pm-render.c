@@ -1,6 +1,5 @@
 /* pm-render — the view pass: a scene and its photon map to an EXR image. */
 #define _GNU_SOURCE
-#include <errno.h>
 #include <inttypes.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -150,9 +149,7 @@ main(int argc, char **argv)
 		die_err(&err);
 	}
 	if (mapname) {
-		FILE *f = strcmp(mapname, "-") == 0 ? stdin : fopen(mapname, "rb");
-		if (!f)
-			die("cannot open '%s': %s", mapname, strerror(errno));
+		FILE *f = open_input(mapname);
 		if (pm_photons_read(&map, f, mapname, &err) != 0)
 			die_err(&err);
 		if (f != stdin)

@@ -284,6 +284,16 @@ parse_real(const char *s, double lo, double hi, const char *opt, const char *usa
 	return v;
 }
 
+FILE *
+open_input(const char *name)
+{
+	FILE *f = strcmp(name, "-") == 0 ? stdin : fopen(name, "rb");
+
+	if (!f)
+		die("cannot open '%s': %s", name, strerror(errno));
+	return f;
+}
+
 const char *
 shown_name(const char *name, char *buf, size_t n)
 {

@@ -7,6 +7,7 @@
 
 #include <stddef.h>
 #include <stdint.h>
+#include <stdio.h>
 
 #include "err.h"
 
@@ -32,6 +33,10 @@ void warn(const char *fmt, ...) __attribute__((format(printf, 1, 2)));
 long long parse_int(const char *s, long long lo, long long hi, const char *opt, const char *usage);
 uint64_t parse_u64(const char *s, const char *opt, const char *usage);
 double parse_real(const char *s, double lo, double hi, const char *opt, const char *usage);
+
+/* An input to read: stdin for "-", else the file opened for reading, or
+ * die with the one "cannot open" message. */
+FILE *open_input(const char *name);
 
 /* A file name as messages show it: quoted, or stdin for "-". Returns buf. */
 const char *shown_name(const char *name, char *buf, size_t n);
