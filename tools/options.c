@@ -175,10 +175,28 @@ left_column(const opt *o, char *buf, size_t n)
 	return snprintf(buf, n, "      --%s%s%s", o->name, o->arg ? " " : "", o->arg ? o->arg : "");
 }
 
+/* Prints the words of s from column col, wrapped before column 80 to
+ * lines indented to indent; returns the column it ends in. */
+static int
+wrap(const char *s, int col, int indent)
+{
+	while (*s) {
+		size_t n = strcspn(s, " \n");
+		if (n > 0 && col > indent && col + 1 + (int)n > 79)
+			col = printf("\n%*s", indent, "") - 1;
+		else if (n > 0 && col > indent)
+			col += printf(" ");
+		col += printf("%.*s", (int)n, s);
+		s += n;
+		s += strspn(s, " \n");
+	}
+	return col;
+}
+
 _Noreturn static void
 help(const tool *t)
 {
-	char left[128];
+	char left[128], def[160];
 	const opt *o;
 	int w = 0;
 
@@ -191,17 +209,11 @@ help(const tool *t)
 	for (int i = 0; (o = nth(t, i)); i++) {
 		left_column(o, left, sizeof left);
 		int col = printf("%-*s  ", w, left);
-		for (const char *h = o->help; *h; h++) {
-			putchar(*h);
-			col++;
-			if (*h == '\n')
-				col = printf("%-*s  ", w, "");
+		col = wrap(o->help, col, w + 2);
+		if (o->def) {
+			snprintf(def, sizeof def, "(default %s)", o->def);
+			wrap(def, col, w + 2);
 		}
-		/* The default on a line of its own when it would pass 80 columns. */
-		if (o->def && col + 11 + (int)strlen(o->def) > 80)
-			printf("\n%-*s  (default %s)", w, "", o->def);
-		else if (o->def)
-			printf(" (default %s)", o->def);
 		putchar('\n');
 	}
 	if (t->notes)

@@ -14,7 +14,7 @@ typedef struct opt {
 	int key;            /* the short letter, or OPT_LONG + n */
 	const char *name;   /* the long form, without "--" */
 	const char *arg;    /* the value's name in -h, NULL if it takes none */
-	const char *help;   /* -h text; '\n' starts an indented line */
+	const char *help;   /* -h text, wrapped to 80 columns */
 	const char *def;    /* the default as -h shows it, NULL for none */
 	int inert;          /* 1: does not change what the program writes (-q,
 	                     * -j), so every spelling of it is left out of the

@@ -19,11 +19,11 @@
 static const char usage[] = "pm-average [-fhqs] [-o OUT.exr] IMAGE...";
 
 static const opt opts[] = {
-	{ 'f', "force", NULL, "average despite differing pm.scene_hash or pm.estimator,\n"
+	{ 'f', "force", NULL, "average despite differing pm.scene_hash or pm.estimator, "
 	  "or a pass given twice", "refuse", 0 },
 	{ 'o', "output", "F", "write the average to the EXR file F, - for stdout", "none", 0 },
-	{ 'q', "quiet", NULL, "no warnings, no progress bar", "warn about\n"
-	  "dropped layers and forced mismatches; a progress bar\n"
+	{ 'q', "quiet", NULL, "no warnings, no progress bar", "warn about "
+	  "dropped layers and forced mismatches; a progress bar "
 	  "when stderr is a terminal", 1 },
 	{ 's', "stats", NULL, "print passes, mean_stderr and mean to stdout", "off", 0 },
 	{ 0, NULL, NULL, NULL, NULL, 0 },

@@ -13,12 +13,12 @@
 static const char usage[] = "pm-diff [-h] [-l NAME] [-m MASK.exr [-c CHANNEL]] [-o ERR.exr] A.exr B.exr";
 
 static const opt opts[] = {
-	{ 'l', "layer", "NAME", "compare NAME.R, NAME.G, NAME.B (or the single channel\n"
+	{ 'l', "layer", "NAME", "compare NAME.R, NAME.G, NAME.B (or the single channel "
 	  "NAME)", "the beauty R, G, B", 0 },
 	{ 'm', "mask", "M", "count only pixels where M's mask channel > 0.5", "all", 0 },
-	{ 'c', "mask-channel", "C", "the mask channel, e.g. edge (pm-render's edge layer);\n"
+	{ 'c', "mask-channel", "C", "the mask channel, e.g. edge (pm-render's edge layer); "
 	  "!C selects pixels where C <= 0.5 instead", "R", 0 },
-	{ 'o', "output", "ERR.exr", "also write the relative error map (A - B) / B per\n"
+	{ 'o', "output", "ERR.exr", "also write the relative error map (A - B) / B per "
 	  "channel (A - B where B = 0) as R, G, B", "none", 0 },
 	{ 0, NULL, NULL, NULL, NULL, 0 },
 };

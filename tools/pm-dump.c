@@ -21,12 +21,12 @@ static const char usage[] =
 enum { O_HEADER = OPT_LONG, O_METRIC, O_NEAR, O_PLY, O_STATS, O_TSV };
 
 static const opt opts[] = {
-	{ O_HEADER, "header", NULL, "the header lines as stored (reads only the header, so\n"
-	  "it works on a truncated file); for an EXR image, its\n"
+	{ O_HEADER, "header", NULL, "the header lines as stored (reads only the header, so "
+	  "it works on a truncated file); for an EXR image, its "
 	  "size, channels and string attributes as key=value", NULL, 0 },
-	{ O_NEAR, "near", "X,Y,Z", "the K nearest photons of the point, nearest first, with\n"
+	{ O_NEAR, "near", "X,Y,Z", "the K nearest photons of the point, nearest first, with "
 	  "their index and distance (photon maps only)", NULL, 0 },
-	{ O_PLY, "ply", NULL, "an ASCII PLY point cloud: position, colour from the\n"
+	{ O_PLY, "ply", NULL, "an ASCII PLY point cloud: position, colour from the "
 	  "flux (tone-mapped), normal = psi", NULL, 0 },
 	{ O_STATS, "stats", NULL, "key: value statistics", NULL, 0 },
 	{ O_TSV, "tsv", NULL, "one line per photon: x y z psi_x psi_y psi_z r g b (flux)", NULL, 0 },

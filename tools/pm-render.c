@@ -25,20 +25,20 @@ static const char usage[] =
 enum { FORCE = OPT_LONG, MAX_SAMPLES, CLASSICAL_NORM };
 
 static const opt opts[] = {
-	{ 'e', "estimator", "EST", "estimator: classical, compensated, path or photons;\n"
-	  "path is an unbiased path tracer and needs no MAP;\n"
+	{ 'e', "estimator", "EST", "estimator: classical, compensated, path or photons; "
+	  "path is an unbiased path tracer and needs no MAP; "
 	  "photons shows MAP's photons as seen from the camera", "compensated", 0 },
 	{ 'j', "threads", "THREADS", "threads, 0 for all cores; the output does not depend on it", "0", 1 },
 	{ 'k', "neighbours", "K", "nearest photons per estimate", "50", 0 },
-	{ CLASSICAL_NORM, "classical-norm", "k|k-1", "the classical estimate's flux over pi r^2: of\n"
-	  "all k photons (k, Jensen's) or scaled by (k-1)/k\n"
-	  "(k-1: unbiased on flat, evenly lit surfaces, where k reads\n"
+	{ CLASSICAL_NORM, "classical-norm", "k|k-1", "the classical estimate's flux over pi r^2: of "
+	  "all k photons (k, Jensen's) or scaled by (k-1)/k "
+	  "(k-1: unbiased on flat, evenly lit surfaces, where k reads "
 	  "bright by 1/(k-1)); k-1 needs -e classical and -k 2 or more", "k", 0 },
-	{ 'o', "output", "OUT.exr", "output image, - for stdout (to pipe into pm-tonemap - or\n"
+	{ 'o', "output", "OUT.exr", "output image, - for stdout (to pipe into pm-tonemap - or "
 	  "pm-average -)", "none: required", 0 },
 	{ 'p', "samples", "SAMPLES", "camera samples per pixel", "4", 0 },
 	{ MAX_SAMPLES, "max-samples", "N", "refuse -p above N, against typos", "65536", 0 },
-	{ 'P', "pass", "I/N", "pass I of N: seed and time derived from I and N, as pm-shoot -P\n"
+	{ 'P', "pass", "I/N", "pass I of N: seed and time derived from I and N, as pm-shoot -P "
 	  "does (see pm-render(1)); -s and -t override them", "no pass", 0 },
 	{ 'q', "quiet", NULL, "quiet: no progress bar", NULL, 1 },
 	{ 's', "seed", "SEED", "random seed", "0", 0 },
@@ -49,7 +49,8 @@ static const opt opts[] = {
 
 static const tool render = {
 	usage,
-	"Renders SCENE's view pass with photon map MAP (- for stdin) to an EXR (formats/image.md).",
+	"Renders SCENE's view pass with photon map MAP (- for stdin) to an EXR\n"
+	"(formats/image.md).",
 	opts, NULL,
 };
 

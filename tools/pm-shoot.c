@@ -25,7 +25,7 @@ static const opt opts[] = {
 	{ 'n', "photons", "PHOTONS", "photons to store, 1e6 or 2.5e5 allowed", "200000", 0 },
 	{ MAX_PHOTONS, "max-photons", "N", "refuse -n above N, against typos", "100000000: 2 GB", 0 },
 	{ 'o', "output", "FILE", "output file, - for stdout", "-", 0 },
-	{ 'P', "pass", "I/N", "pass I of N: seed and time derived from I and N (see pm-shoot(1));\n"
+	{ 'P', "pass", "I/N", "pass I of N: seed and time derived from I and N (see pm-shoot(1)); "
 	  "-s and -t, if given, override them", "no pass", 0 },
 	{ 'q', "quiet", NULL, "quiet: no warnings, no progress bar", NULL, 1 },
 	{ 's', "seed", "SEED", "random seed", "0", 0 },
@@ -36,7 +36,8 @@ static const opt opts[] = {
 
 static const tool shoot = {
 	usage,
-	"Traces photons from the lights of SCENE and writes a photon file (formats/photons.md).",
+	"Traces photons from the lights of SCENE and writes a photon file\n"
+	"(formats/photons.md).",
 	opts, NULL,
 };
 

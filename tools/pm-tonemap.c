@@ -25,11 +25,11 @@ static char about[200], exposure_help[400];
 
 static const opt opts[] = {
 	{ 'a', "abs", NULL, "show absolute values (for signed images like pm-diff -o)", NULL, 0 },
-	{ 'c', "curve", "CURVE", "tone curve after the exposure: reinhard (highlights\n"
-	  "compressed, white only from --white on) or clamp\n"
+	{ 'c', "curve", "CURVE", "tone curve after the exposure: reinhard (highlights "
+	  "compressed, white only from --white on) or clamp "
 	  "(values at or above 1 are white)", "reinhard", 0 },
 	{ 'e', "exposure", "EV", exposure_help, "auto", 0 },
-	{ 'l', "layer", "NAME", "show NAME.R, NAME.G, NAME.B (or the single channel NAME\n"
+	{ 'l', "layer", "NAME", "show NAME.R, NAME.G, NAME.B (or the single channel NAME "
 	  "as grey)", "the beauty R, G, B", 0 },
 	{ 'o', "output", "F", "the PNG to write; - for stdout", "none: required", 0 },
 	{ 'q', "quiet", NULL, "do not print the auto exposure", "print it", 1 },
@@ -90,8 +90,8 @@ main(int argc, char **argv)
 	         "Several inputs of the same height are shown side by side, %d pixels apart,\n"
 	         "under one exposure. An input - is an EXR read from stdin.", GAP);
 	snprintf(exposure_help, sizeof exposure_help,
-	         "multiply by 2^EV before the curve, or auto: map the\n"
-	         "log-average luminance to middle grey (%.2f) and print\n"
+	         "multiply by 2^EV before the curve, or auto: map the "
+	         "log-average luminance to middle grey (%.2f) and print "
 	         "the EV chosen on stderr, to give back as -e EV", PM_AUTO_KEY);
 	opt_init(&tonemap, argc, argv);
 	while ((opt = opt_next(&tonemap, argc, argv)) != -1) {
