@@ -7,7 +7,7 @@ LIB_CXX  := $(wildcard lib/*.cpp)
 LIB_OBJ  := $(LIB_C:%.c=$(B)/%.o) $(LIB_CXX:%.cpp=$(B)/%.o)
 TOOL_SRC := $(wildcard tools/pm-*.c)
 TOOLS    := $(TOOL_SRC:tools/%.c=$(B)/bin/%)
-UTIL_OBJ := $(B)/tools/util.o $(B)/tools/progress.o
+UTIL_OBJ := $(B)/tools/util.o $(B)/tools/bar.o $(B)/tools/options.o
 UNIT_SRC := $(wildcard tests/unit/test_*.c)
 UNITS    := $(UNIT_SRC:tests/unit/%.c=$(B)/tests/%)
 
@@ -25,7 +25,7 @@ $(B)/libpm.a: $(LIB_OBJ)
 	@rm -f $@
 	$(AR) rcs $@ $^
 
-$(B)/tools/%.o: tools/%.c tools/util.h tools/progress.h $(wildcard lib/*.h) config.mk
+$(B)/tools/%.o: tools/%.c tools/util.h tools/bar.h tools/options.h $(wildcard lib/*.h) config.mk
 	@mkdir -p $(@D)
 	$(CC) $(CFLAGS) $(PKG_CFLAGS) -Itools -c $< -o $@
 

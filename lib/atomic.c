@@ -31,7 +31,7 @@ pm_out_open(pm_out *o, const char *path, pm_error *err)
 	if (strcmp(path, "-") == 0) {
 		o->f = stdout;
 		o->fd = 1;
-		o->is_stdout = 1;
+		o->where = PM_OUT_STDOUT;
 		snprintf(o->path, sizeof o->path, "stdout");
 		return 0;
 	}
@@ -52,7 +52,7 @@ pm_out_open(pm_out *o, const char *path, pm_error *err)
 		if (!o->f)
 			return pm_seterr(err, "cannot open '%s': %s", path, strerror(errno));
 		o->fd = fileno(o->f);
-		o->is_stdout = 2;
+		o->where = PM_OUT_IN_PLACE;
 		return 0;
 	}
 	dirof(path, dir, sizeof dir);
@@ -96,17 +96,18 @@ pm_out_commit(pm_out *o, pm_error *err)
 
 	if (!o->f)
 		return pm_seterr(err, "'%s': output already closed", o->path);
-	if (o->is_stdout) {
+	if (o->where != PM_OUT_RENAMED) {
 		int bad = fflush(o->f) != 0 || ferror(o->f);
 		e = errno;
-		if (o->is_stdout == 2 && fclose(o->f) != 0 && !bad) {
+		if (o->where == PM_OUT_IN_PLACE && fclose(o->f) != 0 && !bad) {
 			bad = 1;
 			e = errno;
 		}
 		o->f = NULL;
 		if (bad)
-			return pm_seterr(err, "cannot write %s%s%s: %s", o->is_stdout == 2 ? "'" : "",
-			                 o->path, o->is_stdout == 2 ? "'" : "", strerror(e ? e : EIO));
+			return pm_seterr(err, "cannot write %s%s%s: %s",
+			                 o->where == PM_OUT_IN_PLACE ? "'" : "",
+			                 o->path, o->where == PM_OUT_IN_PLACE ? "'" : "", strerror(e ? e : EIO));
 		return 0;
 	}
 	if (fflush(o->f) != 0 || ferror(o->f) || fsync(o->fd) != 0) {
@@ -153,9 +154,9 @@ pm_out_abort(pm_out *o)
 {
 	if (!o->f)
 		return;
-	if (o->is_stdout == 2) {
+	if (o->where == PM_OUT_IN_PLACE) {
 		fclose(o->f);
-	} else if (!o->is_stdout) {
+	} else if (o->where == PM_OUT_RENAMED) {
 		fclose(o->f);
 		if (o->tmpfile_kind == 2)
 			unlink(o->tmp);

@@ -24,10 +24,15 @@
 
 #include "err.h"
 
+/* Where a pm_out writes: a temporary renamed over the target at commit;
+ * stdout; or in place, for a device or FIFO (renaming over /dev/null or a
+ * named pipe would replace the node, not write to it). */
+enum pm_out_where { PM_OUT_RENAMED, PM_OUT_STDOUT, PM_OUT_IN_PLACE };
+
 typedef struct pm_out {
 	FILE *f;            /* write here */
 	int fd;             /* fileno(f) */
-	int is_stdout;      /* 1 stdout, 2 a device or FIFO written in place */
+	enum pm_out_where where;
 	int tmpfile_kind;   /* 0 stdout, 1 O_TMPFILE, 2 named temporary */
 	char path[4096];    /* target */
 	char tmp[4096];     /* named temporary, if tmpfile_kind == 2 */

@@ -23,6 +23,7 @@
 
 #include "atomic.h"
 #include "scene.h"
+#include "version.h"
 
 /* Limits a reader trusts before allocating: the pixels a scene may ask
  * for (PM_MAX_PIXELS, 2^25 unless the environment says otherwise: scene.h),
@@ -451,6 +452,9 @@ pm_image_write_exr(const pm_image *img, const char *path, pm_error *err)
 			goto fail;
 		}
 	}
+	/* Which pm wrote the file; a copied input's value is replaced. */
+	if (rv == EXR_ERR_SUCCESS)
+		rv = exr_attr_set_string(ctx, 0, "pm.version", PM_VERSION);
 	if (rv == EXR_ERR_SUCCESS)
 		rv = exr_write_header(ctx);
 	if (rv != EXR_ERR_SUCCESS) {

@@ -11,6 +11,7 @@
 #include <string.h>
 
 #include "kdtree.h"
+#include "version.h"
 
 _Static_assert(sizeof(pm_photon) == PM_PHOTON_BYTES, "pm_photon must be 20 bytes");
 _Static_assert(sizeof(float) == 4 && FLT_MANT_DIG == 24 && FLT_MAX_EXP == 128,
@@ -368,10 +369,10 @@ getline_bounded(FILE *f, char *buf, size_t *total)
 }
 
 enum { K_VERSION, K_ENDIAN, K_RECSIZE, K_KDTREE, K_COUNT, K_EMITTED, K_BBOX,
-       K_HASH, K_TIME, K_SEEDS, K_COMMAND, K_N };
+       K_HASH, K_TIME, K_SEEDS, K_COMMAND, K_PM_VERSION, K_N };
 static const char *const keynames[K_N] = {
 	"version", "endian", "record_size", "kdtree", "count", "emitted", "bbox",
-	"light_hash", "time", "seeds", "command",
+	"light_hash", "time", "seeds", "command", "pm_version",
 };
 
 static int
@@ -464,6 +465,9 @@ parse_value(pm_photon_header *h, int key, const char *val, pm_error *err)
 		if (!seeds_ok(val))
 			return pm_seterr(err, "bad seeds '%.40s' (want numbers separated by commas, under 256 characters)", val);
 		snprintf(h->seeds, sizeof h->seeds, "%s", val);
+		return 0;
+	case K_PM_VERSION:
+		/* Which pm wrote the file, for people: nothing depends on it. */
 		return 0;
 	case K_COMMAND:
 		/* An empty line records nothing (and could not be written back:
@@ -595,7 +599,7 @@ read_header(pm_photons *out, FILE *f, const char *name, char **raw, pm_error *er
 		goto fail;
 	}
 	for (int k = 0; k < K_N; k++)
-		if (!seen[k] && k != K_COMMAND) {
+		if (!seen[k] && k != K_COMMAND && k != K_PM_VERSION) {
 			pm_seterr(err, "%s: missing key '%s'", fn, keynames[k]);
 			goto fail;
 		}
@@ -728,7 +732,7 @@ static int
 check_for_write(const pm_photons *ph, const char *fn, float bbox[6], size_t *hlen, pm_error *err)
 {
 	const pm_photon_header *h = &ph->h;
-	size_t len = 300 + strlen(h->seeds);
+	size_t len = 300 + strlen(h->seeds) + strlen(PM_VERSION);
 	const char *s;
 
 	if (h->count > MAX_COUNT)
@@ -803,11 +807,11 @@ pm_photons_write(const pm_photons *ph, FILE *f, const char *name, pm_error *err)
 		return -1;
 	fprintf(f, "PM-PHOTONS\nversion=%d\nendian=little\nrecord_size=%d\nkdtree=%d\n"
 	        "count=%llu\nemitted=%llu\nbbox=%.9g %.9g %.9g %.9g %.9g %.9g\n"
-	        "light_hash=%016llx\ntime=%.17g\nseeds=%s\n",
+	        "light_hash=%016llx\ntime=%.17g\nseeds=%s\npm_version=%s\n",
 	        PM_PHOTONS_VERSION, PM_PHOTON_BYTES, h->kdtree,
 	        (unsigned long long)h->count, (unsigned long long)h->emitted,
 	        bb[0], bb[1], bb[2], bb[3], bb[4], bb[5],
-	        (unsigned long long)h->light_hash, h->time, h->seeds);
+	        (unsigned long long)h->light_hash, h->time, h->seeds, PM_VERSION);
 	for (s = h->history; s && *s;) {
 		size_t n = strcspn(s, "\n");
 		fprintf(f, "command=%.*s\n", (int)n, s);

@@ -4,7 +4,6 @@
  * Reads one input at a time: memory is O(image), not O(inputs), but for
  * the inputs' pass ids (16 bytes a pass), checked for repeats once all are
  * read (lib/passid.h). */
-#include <getopt.h>
 #include <inttypes.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -13,26 +12,29 @@
 #include "average.h"
 #include "image.h"
 #include "passid.h"
-#include "progress.h"
+#include "bar.h"
+#include "options.h"
 #include "util.h"
 
 static const char usage[] = "pm-average [-fhqs] [-o OUT.exr] IMAGE...";
 
-static void
-help(void)
-{
-	printf("usage: %s\n"
-	       "  -f, --force     average despite differing pm.scene_hash or pm.estimator,\n"
-	       "                  or a pass given twice (default: refuse)\n"
-	       "  -h, --help      print this help and exit\n"
-	       "  -o, --output F  write the average to the EXR file F, - for stdout\n"
-	       "                  (default: none)\n"
-	       "  -q, --quiet     no warnings, no progress bar (default: warn about\n"
-	       "                  dropped layers and forced mismatches; a progress bar\n"
-	       "                  when stderr is a terminal)\n"
-	       "  -s, --stats     print passes, mean_stderr and mean to stdout (default: off)\n"
-	       "At least one of -o and -s is needed. An IMAGE - is an EXR read from stdin.\n", usage);
-}
+static const opt opts[] = {
+	{ 'f', "force", NULL, "average despite differing pm.scene_hash or pm.estimator, "
+	  "or a pass given twice", "refuse", 0 },
+	{ 'o', "output", "F", "write the average to the EXR file F, - for stdout", "none", 0 },
+	{ 'q', "quiet", NULL, "no warnings, no progress bar", "warn about "
+	  "dropped layers and forced mismatches; a progress bar "
+	  "when stderr is a terminal", 1 },
+	{ 's', "stats", NULL, "print passes, mean_stderr and mean to stdout", "off", 0 },
+	{ 0, NULL, NULL, NULL, NULL, 0 },
+};
+
+static const tool average = {
+	usage,
+	"Averages pass images weighted by their pass counts (formats/image.md).",
+	opts,
+	"At least one of -o and -s is needed. An IMAGE - is an EXR read from stdin.\n",
+};
 
 /* Attributes copied to the output when every input has the same value (or
  * every input lacks it). */
@@ -100,14 +102,6 @@ must_agree(int k, const char *what, const char *path, const char *v, const char 
 int
 main(int argc, char **argv)
 {
-	static const struct option longopts[] = {
-		{ "force", no_argument, NULL, 'f' },
-		{ "help", no_argument, NULL, 'h' },
-		{ "output", required_argument, NULL, 'o' },
-		{ "quiet", no_argument, NULL, 'q' },
-		{ "stats", no_argument, NULL, 's' },
-		{ NULL, 0, NULL, 0 },
-	};
 	const char *outpath = NULL, *first = NULL, *est_ref = NULL;
 	char firstnm[300], est_refnm[300];
 	char *est = NULL;
@@ -123,15 +117,13 @@ main(int argc, char **argv)
 	progress bar;
 	pm_image img;
 
-	util_init(argc, argv);
-	while ((opt = getopt_long(argc, argv, ":fho:qs", longopts, NULL)) != -1) {
+	opt_init(&average, argc, argv);
+	while ((opt = opt_next(&average, argc, argv)) != -1) {
 		switch (opt) {
 		case 'f': force = 1; break;
-		case 'h': help(); return 0;
 		case 'o': outpath = optarg; break;
 		case 'q': quiet = 1; break;
 		case 's': stats = 1; break;
-		default: bad_option(usage, opt, argv);
 		}
 	}
 	if (optind >= argc)

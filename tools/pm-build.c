@@ -2,8 +2,6 @@
  * (formats/photons.md). Inputs are refused if they come from different
  * scenes or shutter times unless --force. */
 #define _GNU_SOURCE
-#include <errno.h>
-#include <getopt.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -12,18 +10,25 @@
 #include "atomic.h"
 #include "kdtree.h"
 #include "photon.h"
+#include "options.h"
 #include "util.h"
 
 static const char usage[] = "pm-build [-fhq] [-j THREADS] [-o FILE|-] [FILE ...|-]";
-static const char help[] =
+static const opt opts[] = {
+	{ 'f', "force", NULL, "merge inputs whose light_hash or time differ", "refuse", 0 },
+	{ 'j', "threads", "THREADS", "threads, 0 for all cores; the output does not depend on it", "0", 1 },
+	{ 'o', "output", "FILE", "the photon map to write, - for stdout", "-", 0 },
+	{ 'q', "quiet", NULL, "no warnings", "warn on forced merges and empty maps", 1 },
+	{ 0, NULL, NULL, NULL, NULL, 0 },
+};
+
+static const tool build = {
+	usage,
 	"Reads photon files (or maps) and writes one photon map: the records\n"
 	"concatenated, emitted counts summed, then ordered as a balanced kd-tree.\n"
-	"With no FILE, or FILE -, reads stdin.\n"
-	"  -f, --force        merge inputs whose light_hash or time differ (default: refuse)\n"
-	"  -h, --help         print this help and exit\n"
-	"  -j THREADS         threads, 0 for all cores (default 0); the output does not depend on it\n"
-	"  -o, --output FILE  the photon map to write, - for stdout (default: -)\n"
-	"  -q, --quiet        no warnings (default: warn on forced merges and empty maps)\n";
+	"With no FILE, or FILE -, reads stdin.",
+	opts, NULL,
+};
 
 /* Appends seeds to the merged list; a list that would not fit ends in
  * ",..." (the command history still names every input's seed). */
@@ -55,13 +60,6 @@ join_seeds(char *acc, size_t cap, const char *add)
 int
 main(int argc, char **argv)
 {
-	static const struct option lopts[] = {
-		{"force", no_argument, NULL, 'f'},
-		{"help", no_argument, NULL, 'h'},
-		{"output", required_argument, NULL, 'o'},
-		{"quiet", no_argument, NULL, 'q'},
-		{NULL, 0, NULL, 0},
-	};
 	static char *stdin_only[] = {"-"};
 	const char *out = "-", *first = NULL;
 	char **in, qa[600], qb[600];
@@ -70,17 +68,13 @@ main(int argc, char **argv)
 	pm_error err;
 	pm_out o;
 
-	util_init(argc, argv);
-	opterr = 0;
-	while ((c = getopt_long(argc, argv, ":fhj:o:q", lopts, NULL)) != -1) {
+	opt_init(&build, argc, argv);
+	while ((c = opt_next(&build, argc, argv)) != -1) {
 		switch (c) {
 		case 'f': force = 1; break;
-		case 'h': printf("usage: %s\n%s", usage, help); return 0;
 		case 'j': set_threads((int)parse_int(optarg, 0, 4096, "-j", usage)); break;
 		case 'o': out = optarg; break;
 		case 'q': quiet = 1; break;
-		case ':': usage_err(usage, "option '%s' needs a value", argv[optind - 1]);
-		default: usage_err(usage, "unknown option '%s'", argv[optind - 1]);
 		}
 	}
 	in = argv + optind;
@@ -96,11 +90,9 @@ main(int argc, char **argv)
 	memset(&acc, 0, sizeof acc);
 	for (int i = 0; i < nin; i++) {
 		const char *name = in[i];
-		FILE *f = strcmp(name, "-") == 0 ? stdin : fopen(name, "rb");
+		FILE *f = open_input(name);
 		pm_photons ph;
 
-		if (!f)
-			die("cannot open '%s': %s", name, strerror(errno));
 		if (pm_photons_read(&ph, f, name, &err))
 			die_err(&err);
 		if (f != stdin)

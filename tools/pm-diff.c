@@ -1,33 +1,35 @@
 /* pm-diff — compares image A against reference B: RMSE, relMSE (as pbrt-v4's
  * imgtool), mean absolute and maximum error, means, over all pixels or those
  * a mask selects (lib/compare.h). Prints "key: value" lines. */
-#include <getopt.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "compare.h"
 #include "image.h"
+#include "options.h"
 #include "util.h"
 
 static const char usage[] = "pm-diff [-h] [-l NAME] [-m MASK.exr [-c CHANNEL]] [-o ERR.exr] A.exr B.exr";
 
-static void
-help(void)
-{
-	printf("usage: %s\n"
-	       "  -h, --help       print this help and exit\n"
-	       "  -l, --layer NAME compare NAME.R, NAME.G, NAME.B (or the single channel\n"
-	       "                   NAME) (default: the beauty R, G, B)\n"
-	       "  -m, --mask M     count only pixels where M's mask channel > 0.5 (default: all)\n"
-	       "  -c, --mask-channel C  the mask channel, e.g. edge (pm-render's edge layer);\n"
-	       "                   !C selects pixels where C <= 0.5 instead (default: R)\n"
-	       "  -o, --output ERR.exr  also write the relative error map (A - B) / B per\n"
-	       "                   channel (A - B where B = 0) as R, G, B (default: none)\n"
-	       "Prints rmse, relmse, mae, max_abs, mean_a, mean_b, pixels; B is the reference.\n"
-	       "One of A, B and M may be -, an EXR read from stdin.\n",
-	       usage);
-}
+static const opt opts[] = {
+	{ 'l', "layer", "NAME", "compare NAME.R, NAME.G, NAME.B (or the single channel "
+	  "NAME)", "the beauty R, G, B", 0 },
+	{ 'm', "mask", "M", "count only pixels where M's mask channel > 0.5", "all", 0 },
+	{ 'c', "mask-channel", "C", "the mask channel, e.g. edge (pm-render's edge layer); "
+	  "!C selects pixels where C <= 0.5 instead", "R", 0 },
+	{ 'o', "output", "ERR.exr", "also write the relative error map (A - B) / B per "
+	  "channel (A - B where B = 0) as R, G, B", "none", 0 },
+	{ 0, NULL, NULL, NULL, NULL, 0 },
+};
+
+static const tool diff = {
+	usage,
+	"Compares image A against the reference B.",
+	opts,
+	"Prints rmse, relmse, mae, max_abs, mean_a, mean_b, pixels; B is the reference.\n"
+	"One of A, B and M may be -, an EXR read from stdin.\n",
+};
 
 static void
 load(pm_image *img, const char *path, const char *layer, const float *p[3])
@@ -73,14 +75,6 @@ write_errmap(const char *path, const float *const pa[3], const float *const pb[3
 int
 main(int argc, char **argv)
 {
-	static const struct option longopts[] = {
-		{ "help", no_argument, NULL, 'h' },
-		{ "layer", required_argument, NULL, 'l' },
-		{ "mask", required_argument, NULL, 'm' },
-		{ "mask-channel", required_argument, NULL, 'c' },
-		{ "output", required_argument, NULL, 'o' },
-		{ NULL, 0, NULL, 0 },
-	};
 	const char *layer = NULL, *maskpath = NULL, *maskchan = "R", *errpath = NULL;
 	const float *pa[3], *pb[3], *mask = NULL;
 	float *inv = NULL;
@@ -90,15 +84,13 @@ main(int argc, char **argv)
 	char na[300], nb[300];
 	int opt;
 
-	util_init(argc, argv);
-	while ((opt = getopt_long(argc, argv, ":c:hl:m:o:", longopts, NULL)) != -1) {
+	opt_init(&diff, argc, argv);
+	while ((opt = opt_next(&diff, argc, argv)) != -1) {
 		switch (opt) {
 		case 'c': maskchan = optarg; break;
-		case 'h': help(); return 0;
 		case 'l': layer = optarg; break;
 		case 'm': maskpath = optarg; break;
 		case 'o': errpath = optarg; break;
-		default: bad_option(usage, opt, argv);
 		}
 	}
 	if (layer && !*layer)

@@ -3,8 +3,6 @@
  * photons of a point. Reads through the library's one photon reader; with
  * --header it also shows a pass image's provenance (formats/image.md). */
 #define _GNU_SOURCE
-#include <errno.h>
-#include <getopt.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -14,27 +12,36 @@
 #include "image.h"
 #include "kdtree.h"
 #include "photon.h"
+#include "options.h"
 #include "util.h"
 
 static const char usage[] =
 	"pm-dump [-h] [-k K] [--metric l2|linf] [-o FILE|-] "
 	"--stats|--header|--tsv|--ply|--near X,Y,Z FILE|-";
-static const char help[] =
-	"Prints what a photon file or photon map holds. One of:\n"
-	"  --header           the header lines as stored (reads only the header, so\n"
-	"                     it works on a truncated file); for an EXR image, its\n"
-	"                     size, channels and string attributes as key=value\n"
-	"  --near X,Y,Z       the K nearest photons of the point, nearest first, with\n"
-	"                     their index and distance (photon maps only)\n"
-	"  --ply              an ASCII PLY point cloud: position, colour from the\n"
-	"                     flux (tone-mapped), normal = psi\n"
-	"  --stats            key: value statistics\n"
-	"  --tsv              one line per photon: x y z psi_x psi_y psi_z r g b (flux)\n"
-	"Options:\n"
-	"  -h, --help         print this help and exit\n"
-	"  -k K               neighbours for --near (default: 10)\n"
-	"  --metric M         distance for --near: l2 (sphere) or linf (cube) (default: l2)\n"
-	"  -o, --output FILE  write here, - for stdout (default: -)\n";
+enum { O_HEADER = OPT_LONG, O_METRIC, O_NEAR, O_PLY, O_STATS, O_TSV };
+
+static const opt opts[] = {
+	{ O_HEADER, "header", NULL, "the header lines as stored (reads only the header, so "
+	  "it works on a truncated file); for an EXR image, its "
+	  "size, channels and string attributes as key=value", NULL, 0 },
+	{ O_NEAR, "near", "X,Y,Z", "the K nearest photons of the point, nearest first, with "
+	  "their index and distance (photon maps only)", NULL, 0 },
+	{ O_PLY, "ply", NULL, "an ASCII PLY point cloud: position, colour from the "
+	  "flux (tone-mapped), normal = psi", NULL, 0 },
+	{ O_STATS, "stats", NULL, "key: value statistics", NULL, 0 },
+	{ O_TSV, "tsv", NULL, "one line per photon: x y z psi_x psi_y psi_z r g b (flux)", NULL, 0 },
+	{ 'k', "neighbours", "K", "neighbours for --near", "10", 0 },
+	{ O_METRIC, "metric", "M", "distance for --near: l2 (sphere) or linf (cube)", "l2", 0 },
+	{ 'o', "output", "FILE", "write here, - for stdout", "-", 0 },
+	{ 0, NULL, NULL, NULL, NULL, 0 },
+};
+
+static const tool dump = {
+	usage,
+	"Prints what a photon file or photon map holds: one of --header, --near,\n"
+	"--ply, --stats and --tsv.",
+	opts, NULL,
+};
 
 enum { M_NONE, M_HEADER, M_NEAR, M_PLY, M_STATS, M_TSV };
 
@@ -227,18 +234,6 @@ parse_point(const char *s, float x[3])
 int
 main(int argc, char **argv)
 {
-	enum { O_HEADER = 256, O_METRIC, O_NEAR, O_PLY, O_STATS, O_TSV };
-	static const struct option lopts[] = {
-		{"header", no_argument, NULL, O_HEADER},
-		{"help", no_argument, NULL, 'h'},
-		{"metric", required_argument, NULL, O_METRIC},
-		{"near", required_argument, NULL, O_NEAR},
-		{"output", required_argument, NULL, 'o'},
-		{"ply", no_argument, NULL, O_PLY},
-		{"stats", no_argument, NULL, O_STATS},
-		{"tsv", no_argument, NULL, O_TSV},
-		{NULL, 0, NULL, 0},
-	};
 	const char *out = "-", *name;
 	char *raw = NULL, fn[600];
 	int mode = M_NONE, k = 10, kset = 0, mset = 0, c;
@@ -249,12 +244,10 @@ main(int argc, char **argv)
 	FILE *f;
 	pm_out o;
 
-	util_init(argc, argv);
-	opterr = 0;
-	while ((c = getopt_long(argc, argv, ":hk:o:", lopts, NULL)) != -1) {
+	opt_init(&dump, argc, argv);
+	while ((c = opt_next(&dump, argc, argv)) != -1) {
 		int m = M_NONE;
 		switch (c) {
-		case 'h': printf("usage: %s\n%s", usage, help); return 0;
 		case 'k': k = (int)parse_int(optarg, 1, 10000000, "-k", usage); kset = 1; break;
 		case 'o': out = optarg; break;
 		case O_HEADER: m = M_HEADER; break;
@@ -271,8 +264,6 @@ main(int argc, char **argv)
 		case O_PLY: m = M_PLY; break;
 		case O_STATS: m = M_STATS; break;
 		case O_TSV: m = M_TSV; break;
-		case ':': usage_err(usage, "option '%s' needs a value", argv[optind - 1]);
-		default: usage_err(usage, "unknown option '%s'", argv[optind - 1]);
 		}
 		if (m != M_NONE) {
 			if (mode != M_NONE && mode != m)
@@ -302,9 +293,7 @@ main(int argc, char **argv)
 		pm_image_free(&img);
 		return 0;
 	}
-	f = strcmp(name, "-") == 0 ? stdin : fopen(name, "rb");
-	if (!f)
-		die("cannot open '%s': %s", name, strerror(errno));
+	f = open_input(name);
 	if (pm_photons_read_header(&ph, f, name, &raw, &err))
 		die_err(&err);
 	if (mode != M_HEADER && pm_photons_read_records(&ph, f, name, &err))

@@ -1,6 +1,5 @@
 /* pm-render — the view pass: a scene and its photon map to an EXR image. */
 #define _GNU_SOURCE
-#include <getopt.h>
 #include <inttypes.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -15,40 +14,45 @@
 #include "photon.h"
 #include "render.h"
 #include "scene.h"
-#include "progress.h"
+#include "bar.h"
+#include "options.h"
 #include "util.h"
 
 static const char usage[] =
 	"pm-render SCENE [MAP|-] [-e classical|compensated|path|photons] [-k K] [--classical-norm k|k-1] [-p SAMPLES] "
 	"[-P I/N] [-s SEED] [-t TIME] [-j THREADS] [-q] [--force] -o OUT.exr";
 
-_Noreturn static void
-help(void)
-{
-	printf("usage: %s\n"
-	       "Renders SCENE's view pass with photon map MAP (- for stdin) to an EXR (formats/image.md).\n"
-	       "  -e EST      estimator: classical, compensated, path or photons (default\n"
-	       "              compensated); path is an unbiased path tracer and needs no MAP;\n"
-	       "              photons shows MAP's photons as seen from the camera\n"
-	       "  -j THREADS  threads, 0 for all cores (default 0); the output does not depend on it\n"
-	       "  -k K        nearest photons per estimate (default 50)\n"
-	       "  --classical-norm k|k-1  the classical estimate's flux over pi r^2: of\n"
-	       "              all k photons (k, Jensen's, the default) or scaled by (k-1)/k\n"
-	       "              (k-1: unbiased on flat, evenly lit surfaces, where k reads\n"
-	       "              bright by 1/(k-1)); k-1 needs -e classical and -k 2 or more\n"
-	       "  -o OUT.exr  output image, - for stdout (to pipe into pm-tonemap - or\n"
-	       "              pm-average -) (required)\n"
-	       "  -p SAMPLES  camera samples per pixel (default 4)\n"
-	       "  --max-samples N  refuse -p above N, against typos (default 65536)\n"
-	       "  -P I/N      pass I of N: seed and time derived from I and N, as pm-shoot -P\n"
-	       "              does (see pm-render(1)); -s and -t override them (default: no pass)\n"
-	       "  -q          quiet: no progress bar\n"
-	       "  -s SEED     random seed (default 0)\n"
-	       "  -t TIME     shutter time in [0,1] (default: the map's time, else 0)\n"
-	       "  --force     render even if MAP was made from another scene or time\n"
-	       "  -h          this help\n", usage);
-	exit(0);
-}
+enum { FORCE = OPT_LONG, MAX_SAMPLES, CLASSICAL_NORM };
+
+static const opt opts[] = {
+	{ 'e', "estimator", "EST", "estimator: classical, compensated, path or photons; "
+	  "path is an unbiased path tracer and needs no MAP; "
+	  "photons shows MAP's photons as seen from the camera", "compensated", 0 },
+	{ 'j', "threads", "THREADS", "threads, 0 for all cores; the output does not depend on it", "0", 1 },
+	{ 'k', "neighbours", "K", "nearest photons per estimate", "50", 0 },
+	{ CLASSICAL_NORM, "classical-norm", "k|k-1", "the classical estimate's flux over pi r^2: of "
+	  "all k photons (k, Jensen's) or scaled by (k-1)/k "
+	  "(k-1: unbiased on flat, evenly lit surfaces, where k reads "
+	  "bright by 1/(k-1)); k-1 needs -e classical and -k 2 or more", "k", 0 },
+	{ 'o', "output", "OUT.exr", "output image, - for stdout (to pipe into pm-tonemap - or "
+	  "pm-average -)", "none: required", 0 },
+	{ 'p', "samples", "SAMPLES", "camera samples per pixel", "4", 0 },
+	{ MAX_SAMPLES, "max-samples", "N", "refuse -p above N, against typos", "65536", 0 },
+	{ 'P', "pass", "I/N", "pass I of N: seed and time derived from I and N, as pm-shoot -P "
+	  "does (see pm-render(1)); -s and -t override them", "no pass", 0 },
+	{ 'q', "quiet", NULL, "quiet: no progress bar", NULL, 1 },
+	{ 's', "seed", "SEED", "random seed", "0", 0 },
+	{ 't', "time", "TIME", "shutter time in [0,1]", "the map's time, else 0", 0 },
+	{ FORCE, "force", NULL, "render even if MAP was made from another scene or time", NULL, 0 },
+	{ 0, NULL, NULL, NULL, NULL, 0 },
+};
+
+static const tool render = {
+	usage,
+	"Renders SCENE's view pass with photon map MAP (- for stdin) to an EXR\n"
+	"(formats/image.md).",
+	opts, NULL,
+};
 
 static void
 setattr(pm_image *img, const char *k, const char *v)
@@ -75,13 +79,6 @@ is_photon_file(const char *path)
 int
 main(int argc, char **argv)
 {
-	static const struct option longopts[] = {
-		{"force", no_argument, NULL, 'F'},
-		{"max-samples", required_argument, NULL, 'M'},
-		{"classical-norm", required_argument, NULL, 'N'},
-		{"help", no_argument, NULL, 'h'},
-		{0, 0, 0, 0},
-	};
 	pm_render_opts o = {.estimator = PM_EST_COMPENSATED, .k = 50, .spp = 4};
 	const char *out = NULL, *mapname = NULL;
 	int c, threads = 0, force = 0, have_time = 0, have_seed = 0, quiet = 0, max_spp = 65536;
@@ -98,24 +95,22 @@ main(int argc, char **argv)
 	pm_error err;
 	char buf[64], *hist;
 
-	util_init(argc, argv);
-	opterr = 0;
-	while ((c = getopt_long(argc, argv, "e:hj:k:o:p:P:qs:t:", longopts, NULL)) != -1) {
+	opt_init(&render, argc, argv);
+	while ((c = opt_next(&render, argc, argv)) != -1) {
 		switch (c) {
 		case 'e':
 			if ((o.estimator = pm_estimator_parse(optarg)) < 0)
 				usage_err(usage, "-e: unknown estimator '%s'", optarg);
 			break;
-		case 'F': force = 1; break;
-		case 'h': help();
+		case FORCE: force = 1; break;
 		case 'j': threads = (int)parse_int(optarg, 0, 4096, "-j", usage); break;
 		case 'k': o.k = (int)parse_int(optarg, 1, 100000, "-k", usage); break;
 		case 'o': out = optarg; break;
-		case 'N':
+		case CLASSICAL_NORM:
 			if ((o.classical_norm = pm_classical_norm_parse(optarg)) < 0)
 				usage_err(usage, "--classical-norm: unknown normalisation '%s' (k or k-1)", optarg);
 			break;
-		case 'M': max_spp = (int)parse_int(optarg, 1, 1 << 30, "--max-samples", usage); break;
+		case MAX_SAMPLES: max_spp = (int)parse_int(optarg, 1, 1 << 30, "--max-samples", usage); break;
 		case 'p': o.spp = (int)parse_int(optarg, 1, 1 << 30, "-p", usage); break;
 		case 'P':
 			if (pm_pass_parse(optarg, &pass_i, &pass_n, &err) != 0)
@@ -124,7 +119,6 @@ main(int argc, char **argv)
 		case 'q': quiet = 1; break;
 		case 's': o.seed = parse_u64(optarg, "-s", usage); have_seed = 1; break;
 		case 't': time = (float)parse_real(optarg, 0, 1, "-t", usage); have_time = 1; break;
-		default: usage_err(usage, "unknown option '%s'", argv[optind - 1]);
 		}
 	}
 	if (argc - optind < 1)
@@ -156,9 +150,7 @@ main(int argc, char **argv)
 		die_err(&err);
 	}
 	if (mapname) {
-		FILE *f = strcmp(mapname, "-") == 0 ? stdin : fopen(mapname, "rb");
-		if (!f)
-			die("cannot open '%s': %m", mapname);
+		FILE *f = open_input(mapname);
 		if (pm_photons_read(&map, f, mapname, &err) != 0)
 			die_err(&err);
 		if (f != stdin)

@@ -1,6 +1,5 @@
 /* pm-shoot — the light pass: photons from a scene's lights to a photon file. */
 #define _GNU_SOURCE
-#include <getopt.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -13,38 +12,38 @@
 #include "photon.h"
 #include "scene.h"
 #include "shoot.h"
-#include "progress.h"
+#include "bar.h"
+#include "options.h"
 #include "util.h"
 
 static const char usage[] =
 	"pm-shoot SCENE [-n PHOTONS] [-P I/N] [-s SEED] [-t TIME] [-j THREADS] [-o FILE|-] [-q]";
 
-_Noreturn static void
-help(void)
-{
-	printf("usage: %s\n"
-	       "Traces photons from the lights of SCENE and writes a photon file (formats/photons.md).\n"
-	       "  -n PHOTONS  photons to store, 1e6 or 2.5e5 allowed (default 200000)\n"
-	       "  --max-photons N  refuse -n above N, against typos (default 100000000: 2 GB)\n"
-	       "  -o FILE     output file, - for stdout (default -)\n"
-	       "  -P I/N      pass I of N: seed and time derived from I and N (see pm-shoot(1));\n"
-	       "              -s and -t, if given, override them (default: no pass)\n"
-	       "  -q          quiet: no warnings, no progress bar\n"
-	       "  -s SEED     random seed (default 0)\n"
-	       "  -t TIME     shutter time in [0,1] for moving objects (default 0)\n"
-	       "  -j THREADS  threads, 0 for all cores (default 0); the output does not depend on it\n"
-	       "  -h          this help\n", usage);
-	exit(0);
-}
+enum { MAX_PHOTONS = OPT_LONG };
+
+static const opt opts[] = {
+	{ 'n', "photons", "PHOTONS", "photons to store, 1e6 or 2.5e5 allowed", "200000", 0 },
+	{ MAX_PHOTONS, "max-photons", "N", "refuse -n above N, against typos", "100000000: 2 GB", 0 },
+	{ 'o', "output", "FILE", "output file, - for stdout", "-", 0 },
+	{ 'P', "pass", "I/N", "pass I of N: seed and time derived from I and N (see pm-shoot(1)); "
+	  "-s and -t, if given, override them", "no pass", 0 },
+	{ 'q', "quiet", NULL, "quiet: no warnings, no progress bar", NULL, 1 },
+	{ 's', "seed", "SEED", "random seed", "0", 0 },
+	{ 't', "time", "TIME", "shutter time in [0,1] for moving objects", "0", 0 },
+	{ 'j', "threads", "THREADS", "threads, 0 for all cores; the output does not depend on it", "0", 1 },
+	{ 0, NULL, NULL, NULL, NULL, 0 },
+};
+
+static const tool shoot = {
+	usage,
+	"Traces photons from the lights of SCENE and writes a photon file\n"
+	"(formats/photons.md).",
+	opts, NULL,
+};
 
 int
 main(int argc, char **argv)
 {
-	static const struct option longopts[] = {
-		{"help", no_argument, NULL, 'h'},
-		{"max-photons", required_argument, NULL, 'M'},
-		{0, 0, 0, 0},
-	};
 	pm_shoot_opts o = {.nphotons = 200000};
 	uint64_t max_photons = 100000000;
 	const char *out = "-";
@@ -59,13 +58,11 @@ main(int argc, char **argv)
 	pm_out fo;
 	pm_error err;
 
-	util_init(argc, argv);
-	opterr = 0;
-	while ((c = getopt_long(argc, argv, "hj:n:o:P:qs:t:", longopts, NULL)) != -1) {
+	opt_init(&shoot, argc, argv);
+	while ((c = opt_next(&shoot, argc, argv)) != -1) {
 		switch (c) {
-		case 'h': help();
 		case 'j': threads = (int)parse_int(optarg, 0, 4096, "-j", usage); break;
-		case 'M': max_photons = (uint64_t)parse_int(optarg, 0, 4000000000LL, "--max-photons", usage); break;
+		case MAX_PHOTONS: max_photons = (uint64_t)parse_int(optarg, 0, 4000000000LL, "--max-photons", usage); break;
 		case 'n': o.nphotons = (uint64_t)parse_int(optarg, 0, 4000000000LL, "-n", usage); break;
 		case 'o': out = optarg; break;
 		case 'P':
@@ -75,7 +72,6 @@ main(int argc, char **argv)
 		case 'q': quiet = 1; break;
 		case 's': o.seed = parse_u64(optarg, "-s", usage); have_seed = 1; break;
 		case 't': o.time = (float)parse_real(optarg, 0, 1, "-t", usage); have_time = 1; break;
-		default: usage_err(usage, "unknown option '%s'", argv[optind - 1]);
 		}
 	}
 	if (argc - optind != 1)

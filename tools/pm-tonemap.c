@@ -3,7 +3,6 @@
  * log-average luminance), then a tone curve (lib/tonemap.h). Several inputs
  * of one height are set side by side under one exposure, for comparisons
  * like the paper's figure 3. */
-#include <getopt.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -13,6 +12,7 @@
 #include "image.h"
 #include "pngout.h"
 #include "tonemap.h"
+#include "options.h"
 #include "util.h"
 
 static const char usage[] =
@@ -20,28 +20,24 @@ static const char usage[] =
 
 #define GAP 4   /* black columns between images set side by side */
 
-static void
-help(void)
-{
-	printf("usage: %s\n"
-	       "Several inputs of the same height are shown side by side, %d pixels apart,\n"
-	       "under one exposure. An input - is an EXR read from stdin.\n"
-	       "  -a, --abs           show absolute values (for signed images like pm-diff -o)\n"
-	       "  -c, --curve CURVE   tone curve after the exposure: reinhard (highlights\n"
-	       "                      compressed, white only from --white on) or clamp\n"
-	       "                      (values at or above 1 are white) (default: reinhard)\n"
-	       "  -e, --exposure EV   multiply by 2^EV before the curve, or auto: map the\n"
-	       "                      log-average luminance to middle grey (%.2f) and print\n"
-	       "                      the EV chosen on stderr, to give back as -e EV\n"
-	       "                      (default: auto)\n"
-	       "  -h, --help          print this help and exit\n"
-	       "  -l, --layer NAME    show NAME.R, NAME.G, NAME.B (or the single channel NAME\n"
-	       "                      as grey) (default: the beauty R, G, B)\n"
-	       "  -o, --output F      the PNG to write; - for stdout (required)\n"
-	       "  -q, --quiet         do not print the auto exposure (default: print it)\n"
-	       "  -w, --white WHITE   reinhard's white point, in exposed units (default: 4)\n",
-	       usage, GAP, PM_AUTO_KEY);
-}
+/* Filled in main: they show GAP and PM_AUTO_KEY. */
+static char about[200], exposure_help[400];
+
+static const opt opts[] = {
+	{ 'a', "abs", NULL, "show absolute values (for signed images like pm-diff -o)", NULL, 0 },
+	{ 'c', "curve", "CURVE", "tone curve after the exposure: reinhard (highlights "
+	  "compressed, white only from --white on) or clamp "
+	  "(values at or above 1 are white)", "reinhard", 0 },
+	{ 'e', "exposure", "EV", exposure_help, "auto", 0 },
+	{ 'l', "layer", "NAME", "show NAME.R, NAME.G, NAME.B (or the single channel NAME "
+	  "as grey)", "the beauty R, G, B", 0 },
+	{ 'o', "output", "F", "the PNG to write; - for stdout", "none: required", 0 },
+	{ 'q', "quiet", NULL, "do not print the auto exposure", "print it", 1 },
+	{ 'w', "white", "WHITE", "reinhard's white point, in exposed units", "4", 0 },
+	{ 0, NULL, NULL, NULL, NULL, 0 },
+};
+
+static const tool tonemap = { usage, about, opts, NULL };
 
 /* One input's planes, copied out of its image (which is freed at once, so
  * that stdin is read only once and memory holds only what is shown). */
@@ -78,17 +74,6 @@ load(shown *s, const char *path, const char *layer, int absval)
 int
 main(int argc, char **argv)
 {
-	static const struct option longopts[] = {
-		{ "abs", no_argument, NULL, 'a' },
-		{ "curve", required_argument, NULL, 'c' },
-		{ "exposure", required_argument, NULL, 'e' },
-		{ "help", no_argument, NULL, 'h' },
-		{ "layer", required_argument, NULL, 'l' },
-		{ "output", required_argument, NULL, 'o' },
-		{ "quiet", no_argument, NULL, 'q' },
-		{ "white", required_argument, NULL, 'w' },
-		{ NULL, 0, NULL, 0 },
-	};
 	const char *layer = NULL, *outpath = NULL;
 	/* Auto exposure and a curve that keeps highlights by default, so that
 	 * a scene lit by 2 W or by 5000 W previews alike, and lamps and the
@@ -101,8 +86,15 @@ main(int argc, char **argv)
 	size_t used = 0;
 	int opt, absval = 0, autoev = 1, quiet = 0, curve, n, w = 0, h = 0, x0 = 0;
 
-	util_init(argc, argv);
-	while ((opt = getopt_long(argc, argv, ":ac:e:hl:o:qw:", longopts, NULL)) != -1) {
+	snprintf(about, sizeof about,
+	         "Several inputs of the same height are shown side by side, %d pixels apart,\n"
+	         "under one exposure. An input - is an EXR read from stdin.", GAP);
+	snprintf(exposure_help, sizeof exposure_help,
+	         "multiply by 2^EV before the curve, or auto: map the "
+	         "log-average luminance to middle grey (%.2f) and print "
+	         "the EV chosen on stderr, to give back as -e EV", PM_AUTO_KEY);
+	opt_init(&tonemap, argc, argv);
+	while ((opt = opt_next(&tonemap, argc, argv)) != -1) {
 		switch (opt) {
 		case 'a': absval = 1; break;
 		case 'c':
@@ -115,12 +107,10 @@ main(int argc, char **argv)
 			if (!autoev)
 				tone.ev = parse_real(optarg, -100, 100, "--exposure", usage);
 			break;
-		case 'h': help(); return 0;
 		case 'l': layer = optarg; break;
 		case 'o': outpath = optarg; break;
 		case 'q': quiet = 1; break;
 		case 'w': tone.white = parse_real(optarg, 1e-6, 1e30, "--white", usage); break;
-		default: bad_option(usage, opt, argv);
 		}
 	}
 	if (layer && !*layer)

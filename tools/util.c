@@ -22,7 +22,6 @@
 #include "atomic.h"
 
 const char *argv0 = "pm";
-static char cmdbuf[8192];
 
 /* On SIGINT, SIGTERM or SIGHUP: removes the named temporary files this
  * process has open (lib/atomic.h: their names hold PM_TMP_MARK), then dies
@@ -105,38 +104,8 @@ util_init(int argc, char **argv)
 	}
 
 	const char *slash = strrchr(argv[0], '/');
-	size_t n = 0;
 
 	argv0 = slash ? slash + 1 : argv[0];
-	for (int i = 0; i < argc && n < sizeof cmdbuf - 8; i++) {
-		const char *a = i == 0 ? argv0 : argv[i];
-		int plain;
-
-		/* The thread count and quietness do not change what a program
-		 * writes, so they are left out of the recorded command: outputs
-		 * stay byte-identical whatever -j says. */
-		if (i > 0 && (!strcmp(a, "-q") || !strncmp(a, "-j", 2))) {
-			i += !strcmp(a, "-j");
-			continue;
-		}
-		plain = *a != 0 && strspn(a, "abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789-_./=,:+@%") == strlen(a);
-		if (i > 0)
-			cmdbuf[n++] = ' ';
-		if (!plain)
-			cmdbuf[n++] = '\'';
-		for (; *a && n < sizeof cmdbuf - 8; a++) {
-			if (*a == '\n')
-				cmdbuf[n++] = ' ';
-			else if (*a == '\'' && n < sizeof cmdbuf - 12) {
-				memcpy(cmdbuf + n, "'\\''", 4);
-				n += 4;
-			} else
-				cmdbuf[n++] = *a;
-		}
-		if (!plain)
-			cmdbuf[n++] = '\'';
-	}
-	cmdbuf[n] = 0;
 }
 
 static void
@@ -191,11 +160,21 @@ usage_err(const char *usage, const char *fmt, ...)
 void
 bad_option(const char *usage, int opt, char **argv)
 {
+	const char *word = argv[optind - 1];
+	/* getopt has moved past a long option's word, and past a short one's
+	 * only when its value is missing; an unknown letter may sit inside a
+	 * cluster ("-qx"), so it is named by itself. */
+	int islong = !strncmp(word, "--", 2) && (opt == ':' || !optopt || strchr(word, '='));
+	size_t n = islong ? strcspn(word, "=") : 2;
+	char shortname[3] = { '-', (char)optopt, 0 };
+
+	if (!islong)
+		word = shortname;
 	if (opt == ':')
-		usage_err(usage, "option '%s' needs an argument", argv[optind - 1]);
-	if (optopt)
-		usage_err(usage, "unknown option '-%c'", optopt);
-	usage_err(usage, "unknown option '%s'", argv[optind - 1]);
+		usage_err(usage, "option '%.*s' needs a value", (int)n, word);
+	if (optopt && islong)
+		usage_err(usage, "option '%.*s' takes no value", (int)n, word);
+	usage_err(usage, "unknown option '%.*s'", (int)n, word);
 }
 
 /* A whole number in decimal, also in exponent form ("1e6", "2.5e5"), read
@@ -305,6 +284,16 @@ parse_real(const char *s, double lo, double hi, const char *opt, const char *usa
 	return v;
 }
 
+FILE *
+open_input(const char *name)
+{
+	FILE *f = strcmp(name, "-") == 0 ? stdin : fopen(name, "rb");
+
+	if (!f)
+		die("cannot open '%s': %s", name, strerror(errno));
+	return f;
+}
+
 const char *
 shown_name(const char *name, char *buf, size_t n)
 {
@@ -373,12 +362,6 @@ check_output(const char *usage, const char *out, enum out_kind kind, char *const
 			usage_err(usage, "'%s' is also an input%s: writing it would destroy it (choose another output)",
 			          out, in ? " (as stdin)" : "");
 	}
-}
-
-const char *
-cmdline(void)
-{
-	return cmdbuf;
 }
 
 void

@@ -1,5 +1,5 @@
 /* util.h — what every pm program shares: messages, exits, checked number
- * parsing, the command line as a string for file histories.
+ * parsing, output checks, threads.
  *
  * Exit codes: 0 success, 1 a failed run, 2 a bad command line. */
 #ifndef PM_UTIL_H
@@ -7,6 +7,7 @@
 
 #include <stddef.h>
 #include <stdint.h>
+#include <stdio.h>
 
 #include "err.h"
 
@@ -33,6 +34,10 @@ long long parse_int(const char *s, long long lo, long long hi, const char *opt, 
 uint64_t parse_u64(const char *s, const char *opt, const char *usage);
 double parse_real(const char *s, double lo, double hi, const char *opt, const char *usage);
 
+/* An input to read: stdin for "-", else the file opened for reading, or
+ * die with the one "cannot open" message. */
+FILE *open_input(const char *name);
+
 /* A file name as messages show it: quoted, or stdin for "-". Returns buf. */
 const char *shown_name(const char *name, char *buf, size_t n);
 
@@ -51,9 +56,6 @@ void check_output(const char *usage, const char *out, enum out_kind kind,
 
 /* Refuses (usage_err) inputs that name stdin (-) more than once. */
 void check_stdin_once(const char *usage, char *const *inputs, int n);
-
-/* The full command line, shell-quoted where needed; static storage. */
-const char *cmdline(void);
 
 /* Threads: n > 0 as given, 0 for all cores. Sets the OpenMP thread count. */
 void set_threads(int n);

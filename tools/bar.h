@@ -1,10 +1,10 @@
-/* progress.h — a one-line progress bar on stderr for people at a terminal:
+/* bar.h — a one-line progress bar on stderr for people at a terminal:
  * "pm-render: rows [#####.....] 512/1024 50% 85.3/s 0:06 left". Shown only
  * when stderr is a terminal and the program is not quiet; otherwise every
  * call does nothing, so logs and pipes stay clean. Redrawn at most ten
  * times a second. Calls must come from one thread at a time. */
-#ifndef PM_TOOLS_PROGRESS_H
-#define PM_TOOLS_PROGRESS_H
+#ifndef PM_TOOLS_BAR_H
+#define PM_TOOLS_BAR_H
 
 #include <stdint.h>
 

@@ -1,5 +1,5 @@
-/* progress.c — progress bars on stderr (see progress.h). */
-#include "progress.h"
+/* bar.c — progress bars on stderr (see bar.h). */
+#include "bar.h"
 
 #include <stdio.h>
 #include <time.h>
