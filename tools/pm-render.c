@@ -28,9 +28,12 @@ make_usage(void)
 	char names[256] = "";
 	size_t n = 0;
 
-	for (const pm_estimator *e = pm_estimators; e->name; e++)
-		n += (size_t)snprintf(names + n, n < sizeof names ? sizeof names - n : 0, "%s%s",
-		                      e == pm_estimators ? "" : "|", e->name);
+	for (const pm_estimator *e = pm_estimators; e->name; e++) {
+		int w = snprintf(names + n, sizeof names - n, "%s%s", n ? "|" : "", e->name);
+		if (w < 0 || (size_t)w >= sizeof names - n)
+			break;
+		n += (size_t)w;
+	}
 	snprintf(usage, sizeof usage,
 	         "pm-render SCENE [MAP|-] [-e %s] [-k K] [--classical-norm k|k-1] [-p SAMPLES] "
 	         "[-P I/N] [-s SEED] [-t TIME] [-j THREADS] [-q] [--force] -o OUT.exr", names);
