@@ -27,6 +27,7 @@
 #include "camera.h"
 #include "compensate.h"
 #include "estimate.h"
+#include "frame.h"
 #include "kdtree.h"
 #include "light.h"
 #include "rng.h"
@@ -124,8 +125,7 @@ main(int argc, char **argv)
 	long nph = 200000;
 	int k = 50, runs = 3, c;
 	pm_scene s;
-	pm_accel *a;
-	pm_lights L;
+	pm_frame fr;
 	pm_camera cam;
 	pm_error err;
 	double sink = 0, tv[99], tw[99];
@@ -149,13 +149,9 @@ main(int argc, char **argv)
 	omp_set_num_threads(1);
 	if (pm_scene_load(&s, path, &err))
 		die(path, err.msg);
-	pm_vec3 *v = malloc((s.nverts ? s.nverts : 1) * sizeof *v);
-	if (!v)
-		die(path, "out of memory");
-	pm_scene_verts_at(&s, 0, v);
-	if (pm_accel_build(&a, &s, v, &err) || pm_lights_build(&L, &s, v, 0, &err)
-	    || pm_camera_init(&cam, &s.camera, &err))
+	if (pm_frame_build(&fr, &s, 0, PM_NEEDS_POLYINDEX, &err) || pm_camera_init(&cam, &s.camera, &err))
 		die(path, err.msg);
+	const pm_accel *a = fr.accel;
 	printf("scene\t%s\ntriangles\t%u\n", path, s.ntris);
 
 	/* Rays: one camera ray per pixel centre, and from each hit a cosine
@@ -192,7 +188,7 @@ main(int argc, char **argv)
 		}
 
 	RTCDevice dev = rtcNewDevice("verbose=0");
-	RTCScene raw = raw_scene(dev, &s, v);
+	RTCScene raw = raw_scene(dev, &s, fr.verts);
 	const char *kind[2] = {"camera", "bounce"};
 	const ray *rs[2] = {cr, br};
 	long rn[2] = {np, nb};
@@ -216,7 +212,7 @@ main(int argc, char **argv)
 	for (int i = 0; i < runs; i++) {
 		nhits = 0;
 		double t = now();
-		if (pm_shoot(&s, a, &L, &so, &ph, &err))
+		if (pm_shoot(&s, a, &fr.lights, &so, &ph, &err))
 			die(path, err.msg);
 		tv[i] = now() - t;
 		if (i + 1 < runs)
@@ -250,9 +246,7 @@ main(int argc, char **argv)
 	ph.h.kdtree = 1;
 
 	/* Estimates at the first photon-surface hits, in image order. */
-	pm_polyindex *pi;
-	if (pm_polyindex_build(&pi, &s, v, &err))
-		die(path, err.msg);
+	const pm_polyindex *pi = fr.pi;
 	pm_nn *nn = malloc((size_t)k * sizeof *nn);
 	pm_comp_scratch *sc = pm_comp_scratch_new(k);
 	double tc[99], tq[99];
@@ -306,13 +300,10 @@ main(int argc, char **argv)
 
 	pm_comp_scratch_free(sc);
 	free(nn);
-	pm_polyindex_free(pi);
 	rtcReleaseScene(raw);
 	rtcReleaseDevice(dev);
 	pm_photons_free(&ph);
-	pm_lights_free(&L);
-	pm_accel_free(a);
-	free(v);
+	pm_frame_free(&fr);
 	free(cr);
 	free(br);
 	free(hx);

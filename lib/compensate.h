@@ -1,7 +1,7 @@
-/* compensate.h — the inside of the compensated estimate (Hey & Purgathofer
- * 2001, §3), for tests, benchmarks and inspection tools. Renderers call
- * pm_estimate_compensated (estimate.h), which finds the photons and then
- * does what pm_comp_weights does.
+/* compensate.h — the compensated estimate (Hey & Purgathofer 2001, §3):
+ * pm_estimate_compensated for renderers, which finds the photons and then
+ * does what pm_comp_weights does; the inside of it (weights, statistics) for
+ * tests, benchmarks and inspection tools.
  *
  * The model (the README's section on the compensated estimate says why):
  * a photon's target area A_p is the area, projected along its direction
@@ -44,6 +44,23 @@
 #define PM_COMP_TAU_REL 1e-3   /* boundary shell width, relative to h */
 #define PM_COMP_HMIN_REL 1e-6  /* minimum h, relative to the geometry's size */
 #define PM_COMP_SKIP_REL 1e-9  /* A_p below this * (2h)^2 * (Psi.n): skipped */
+
+typedef struct pm_comp_scratch pm_comp_scratch;
+
+/* Per-thread working memory for up to k photons. */
+pm_comp_scratch *pm_comp_scratch_new(int k);
+void pm_comp_scratch_free(pm_comp_scratch *sc);
+
+/* Compensated (paper §3, eq. 1-4): the smallest cube centred at x holding k
+ * photons (L-infinity nearest neighbours); the photon-surface polygons
+ * clipped into it; per photon the target area A_p = sum over front-facing
+ * clipped polygons g of A_g (Psi_p . N_g); L = sum Phi_p / A_p (Psi_p . N)
+ * f_r(x, Psi_p, wo). Arguments as in estimate.h; pi indexes the scene at
+ * the map's time. */
+pm_vec3 pm_estimate_compensated(const pm_polyindex *pi, const pm_photons *map,
+                                pm_vec3 x, pm_vec3 n, pm_vec3 wo,
+                                const pm_material *m, int k,
+                                pm_comp_scratch *sc, pm_estimate_info *info);
 
 typedef struct pm_comp_stats {
 	double h;        /* half-size of the cube used (the clipping cube) */

@@ -1,10 +1,10 @@
-/* edge.c — is a point within one cube of an edge or corner? (polyindex.h).
+/* edge.c — is a point within one cube of an edge or corner? (edge.h).
  * Used to tell the pixels whose estimate's support reaches another surface
  * (where classical and compensated estimates differ, paper §1) from the rest. */
 #include <math.h>
 
 #include "clip.h"
-#include "polyindex.h"
+#include "edge.h"
 
 typedef struct edge_query {
 	const pm_polyindex *pi;

@@ -1,17 +1,17 @@
-/* estimate.h — radiance estimates from a photon map at a diffuse or soft
- * glossy point x: the classical one (Jensen 1996) and the compensated one
- * (Hey & Purgathofer 2001, §3).
+/* estimate.h — the classical radiance estimate from a photon map at a
+ * diffuse or soft glossy point x (Jensen 1996), and what every estimate
+ * shares: its arguments and pm_estimate_info. The compensated estimate (Hey &
+ * Purgathofer 2001, §3) is in compensate.h.
  *
  * Common arguments: map is a built photon map (kd order); x the point; n the
  * unit shading normal on the viewer's side; wo the unit direction toward the
  * viewer (the paper's Psi_i); m the material at x; k the number of nearest
  * photons. Photon flux is power / map->h.emitted. Results are RGB radiance,
- * finite and >= 0 always. Both functions are thread-safe given a scratch per
+ * finite and >= 0 always. The estimates are thread-safe given a scratch per
  * thread. */
 #ifndef PM_ESTIMATE_H
 #define PM_ESTIMATE_H
 
-#include "err.h"
 #include "kdtree.h"
 #include "photon.h"
 #include "scene.h"
@@ -45,30 +45,5 @@ pm_vec3 pm_estimate_classical_norm(const pm_photons *map, pm_vec3 x, pm_vec3 n,
 const char *pm_classical_norm_name(int norm);
 /* Returns the normalisation for a name ("k" or "k-1"), or -1. */
 int pm_classical_norm_parse(const char *name);
-
-/* The compensated estimate needs the photon-surface polygons near x: an
- * index over the scene's diffuse and soft-glossy polygons at one shutter time. */
-typedef struct pm_polyindex pm_polyindex;
-typedef struct pm_comp_scratch pm_comp_scratch;
-
-/* verts: the scene's vertices at the pass's time (pm_scene_verts_at); the
- * index keeps pointers to s and verts, which must outlive it. */
-int pm_polyindex_build(pm_polyindex **out, const pm_scene *s,
-                       const pm_vec3 *verts, pm_error *err);
-void pm_polyindex_free(pm_polyindex *pi);
-
-/* Per-thread working memory for up to k photons. */
-pm_comp_scratch *pm_comp_scratch_new(int k);
-void pm_comp_scratch_free(pm_comp_scratch *sc);
-
-/* Compensated (paper §3, eq. 1-4): the smallest cube centred at x holding k
- * photons (L-infinity nearest neighbours); the photon-surface polygons
- * clipped into it; per photon the target area A_p = sum over front-facing
- * clipped polygons g of A_g (Psi_p . N_g); L = sum Phi_p / A_p (Psi_p . N)
- * f_r(x, Psi_p, wo). */
-pm_vec3 pm_estimate_compensated(const pm_polyindex *pi, const pm_photons *map,
-                                pm_vec3 x, pm_vec3 n, pm_vec3 wo,
-                                const pm_material *m, int k,
-                                pm_comp_scratch *sc, pm_estimate_info *info);
 
 #endif

@@ -1,7 +1,6 @@
 /* polyindex.h — the index over a scene's photon-surface polygons that the
- * compensated estimate asks "which polygons may meet this cube?" (paper §3).
- * Built and freed through estimate.h (pm_polyindex_build/free); this header
- * is the library-internal query side.
+ * compensated estimate asks "which polygons may meet this cube?" (paper §3),
+ * at one shutter time.
  *
  * A bounding volume hierarchy with median splits: float boxes that bound the
  * float vertices exactly, queries with the cube rounded outward to float, so
@@ -12,7 +11,17 @@
 
 #include <stdint.h>
 
-#include "estimate.h"
+#include "err.h"
+#include "scene.h"
+#include "vec.h"
+
+typedef struct pm_polyindex pm_polyindex;
+
+/* verts: the scene's vertices at the pass's time (pm_scene_verts_at); the
+ * index keeps pointers to s and verts, which must outlive it. */
+int pm_polyindex_build(pm_polyindex **out, const pm_scene *s,
+                       const pm_vec3 *verts, pm_error *err);
+void pm_polyindex_free(pm_polyindex *pi);
 
 typedef struct pm_bvh_node {
 	float lo[3], hi[3];
@@ -37,11 +46,5 @@ struct pm_polyindex {
 typedef void (*pm_polyindex_fn)(void *ctx, uint32_t poly);
 void pm_polyindex_cube(const pm_polyindex *pi, pm_dvec3 c, double h,
                        pm_polyindex_fn fn, void *ctx);
-
-/* 1 if the closed cube of half-size h centred at x meets, with nonzero
- * area, a photon-surface polygon whose plane does not pass through x: x is
- * within one cube of an edge or corner of the geometry. pm-render's `edge`
- * layer, the mask for error measured near edges. */
-int pm_polyindex_near_edge(const pm_polyindex *pi, pm_vec3 x, double h);
 
 #endif

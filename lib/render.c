@@ -9,7 +9,7 @@
 
 #include "bsdf.h"
 #include "camera.h"
-#include "polyindex.h"
+#include "edge.h"
 #include "rng.h"
 
 #define RENDER_DOMAIN 0x52454e444552ull
@@ -21,27 +21,6 @@ const char *const pm_render_chans[PM_RENDER_NCHAN] = {
 	"specular.R", "specular.G", "specular.B",
 	"size", "count", "edge",
 };
-
-const char *
-pm_estimator_name(int e)
-{
-	switch (e) {
-	case PM_EST_CLASSICAL: return "classical";
-	case PM_EST_COMPENSATED: return "compensated";
-	case PM_EST_PATH: return "path";
-	case PM_EST_PHOTONS: return "photons";
-	default: return "?";
-	}
-}
-
-int
-pm_estimator_parse(const char *name)
-{
-	for (int e = PM_EST_CLASSICAL; e <= PM_EST_PHOTONS; e++)
-		if (strcmp(name, pm_estimator_name(e)) == 0)
-			return e;
-	return -1;
-}
 
 /* What one camera sample brought, by where it came from (formats/image.md):
  * direct = emission seen and shadow rays at a first-hit diffuse surface;
@@ -58,15 +37,10 @@ typedef struct ctx {
 	const pm_scene *s;
 	const pm_accel *a;
 	const pm_lights *L;
-	const pm_photons *map;
-	const pm_polyindex *pi;
 	const pm_render_opts *o;
+	const pm_estimator *est;
+	pm_est_in in;
 } ctx;
-
-typedef struct scratch {
-	pm_nn *nn;
-	pm_comp_scratch *comp;
-} scratch;
 
 /* Power heuristic (Veach 1997, §9.2.4) for two strategies, one sample each. */
 static float
@@ -130,7 +104,7 @@ emitted_mis(const ctx *c, const pm_hit *h, pm_vec3 x, pm_vec3 d, float bpdf, int
 }
 
 static void
-trace(const ctx *c, scratch *sc, pm_vec3 o, pm_vec3 d, pm_rng *r, sample *out)
+trace(const ctx *c, void *sc, pm_vec3 o, pm_vec3 d, pm_rng *r, sample *out)
 {
 	int maxd = c->o->max_depth > 0 ? c->o->max_depth : 64;
 	pm_vec3 beta = pm_v3(1, 1, 1);
@@ -159,7 +133,7 @@ trace(const ctx *c, scratch *sc, pm_vec3 o, pm_vec3 d, pm_rng *r, sample *out)
 			*here = pm_add(*here, pm_mul(beta, direct_light(c, h.p, h.ng, n, wo, m, r)));
 		if (pm_bsdf_sample(m, h.ng, wo, r, &bs) != 0)
 			bs.pdf = -1;
-		if (pm_mat_is_photon_surface(m) && c->o->estimator != PM_EST_PATH) {
+		if (pm_mat_is_photon_surface(m) && c->est->estimate) {
 			pm_estimate_info info;
 			pm_vec3 L;
 			pm_hit lh;
@@ -168,17 +142,13 @@ trace(const ctx *c, scratch *sc, pm_vec3 o, pm_vec3 d, pm_rng *r, sample *out)
 			                               bs.wi, 0.0f, FLT_MAX, &lh))
 				*here = pm_add(*here, pm_mul(pm_mul(beta, bs.weight),
 				                             emitted_mis(c, &lh, h.p, bs.wi, bs.pdf, 0)));
-			if (c->o->estimator == PM_EST_COMPENSATED)
-				L = pm_estimate_compensated(c->pi, c->map, h.p, n, wo, m, c->o->k, sc->comp, &info);
-			else
-				L = pm_estimate_classical_norm(c->map, h.p, n, wo, m, c->o->k,
-				                               c->o->classical_norm, sc->nn, &info);
+			L = c->est->estimate(&c->in, sc, h.p, n, wo, m, &info);
 			*bucket = pm_add(*bucket, pm_mul(beta, L));
 			if (depth == 0) {
 				out->size = info.size;
 				out->count = info.nphotons;
 				out->estimated = 1;
-				out->edge = pm_polyindex_near_edge(c->pi, h.p, info.size);
+				out->edge = pm_polyindex_near_edge(c->in.pi, h.p, info.size);
 			}
 			return;
 		}
@@ -199,92 +169,6 @@ trace(const ctx *c, scratch *sc, pm_vec3 o, pm_vec3 d, pm_rng *r, sample *out)
 	}
 }
 
-/* -e photons (see render.h): each photon's pixel and contribution are found
- * in parallel, then summed in photon order, so the image does not depend on
- * the thread count. */
-static int
-render_photons(const pm_scene *s, const pm_accel *a, const pm_photons *map,
-               const pm_camera *cam, const pm_render_opts *o, pm_image *img, pm_error *err)
-{
-	int W = cam->width, H = cam->height;
-	size_t npx = (size_t)W * H, n = (size_t)map->h.count;
-	double emitted = map->h.emitted ? (double)map->h.emitted : 1.0;
-	/* Pixel side on the image plane at distance 1. */
-	float pix = 2.0f * cam->tan_half / (float)H;
-	float aspect = (float)W / (float)H;
-	long *at = malloc((n ? n : 1) * sizeof *at);
-	pm_vec3 *val = malloc((n ? n : 1) * sizeof *val);
-	float *R = pm_image_chan(img, "R"), *G = pm_image_chan(img, "G"), *B = pm_image_chan(img, "B");
-	float *IR = pm_image_chan(img, "indirect.R"), *IG = pm_image_chan(img, "indirect.G");
-	float *IB = pm_image_chan(img, "indirect.B"), *cnt = pm_image_chan(img, "count");
-
-	if (!at || !val) {
-		free(at);
-		free(val);
-		pm_image_free(img);
-		return pm_seterr(err, "out of memory");
-	}
-	#pragma omp parallel for schedule(dynamic, 4096)
-	for (size_t i = 0; i < n; i++) {
-		pm_vec3 p = pm_photon_pos(&map->p[i]), v = pm_sub(p, cam->eye), d, wo, nrm;
-		float z = pm_dot(v, cam->f), dist = pm_len(v), x, y, cosa, coso, area;
-		const pm_material *m;
-		pm_hit h;
-		long px, py;
-
-		at[i] = -1;
-		if (!(z > 0) || !(dist > 0))
-			continue;
-		x = pm_dot(v, cam->r) / z;
-		y = pm_dot(v, cam->u) / z;
-		x = (x / (cam->tan_half * aspect) + 1.0f) * 0.5f * (float)W;
-		y = (1.0f - y / cam->tan_half) * 0.5f * (float)H;
-		if (!(x >= 0 && x < (float)W && y >= 0 && y < (float)H))
-			continue;
-		px = (long)x;
-		py = (long)y;
-		d = pm_scale(v, 1.0f / dist);
-		/* Depth test: the camera sees the photon if the first surface
-		 * along the ray to it is where the photon lies. */
-		if (!pm_accel_hit(a, cam->eye, d, 0.0f, FLT_MAX, &h) ||
-		    fabsf(h.t - dist) > 1e-3f * dist + 1e-6f)
-			continue;
-		m = &s->mats[s->objs[h.obj].material];
-		wo = pm_neg(d);
-		nrm = pm_dot(h.ng, wo) >= 0 ? h.ng : pm_neg(h.ng);
-		cosa = z / dist;
-		coso = pm_dot(nrm, wo);
-		if (!(coso > 0))
-			continue;
-		/* Footprint: the pixel's solid angle pix^2 cos^3(a) at distance
-		 * dist, spread over a surface tilted by the view angle. */
-		area = dist * dist * pix * pix * cosa * cosa * cosa / coso;
-		val[i] = pm_scale(pm_mul(pm_bsdf_eval(m, nrm, pm_photon_dir(&map->p[i]), wo),
-		                         pm_photon_power(&map->p[i])),
-		                  (float)(1.0 / emitted) / area);
-		at[i] = py * W + px;
-	}
-	for (size_t i = 0; i < n; i++) {
-		long k = at[i];
-		if (k < 0 || !pm_vfinite(val[i]))
-			continue;
-		R[k] += val[i].x;
-		G[k] += val[i].y;
-		B[k] += val[i].z;
-		cnt[k] += 1.0f;
-	}
-	for (size_t k = 0; k < npx; k++) {
-		IR[k] = R[k];
-		IG[k] = G[k];
-		IB[k] = B[k];
-	}
-	free(at);
-	free(val);
-	if (o->progress)
-		o->progress(o->progress_arg, (uint64_t)H, (uint64_t)H);
-	return 0;
-}
-
 static int
 finite_sample(const sample *s)
 {
@@ -292,19 +176,21 @@ finite_sample(const sample *s)
 }
 
 int
-pm_render(const pm_scene *s, const pm_accel *a, const pm_lights *L,
-          const pm_photons *map, const pm_polyindex *pi,
-          const pm_render_opts *o, pm_image *img, pm_error *err)
+pm_render(const pm_frame *f, const pm_photons *map, const pm_render_opts *o,
+          pm_image *img, pm_error *err)
 {
-	ctx c = {s, a, L, map, pi, o};
+	const pm_scene *s = f->s;
+	const pm_estimator *est = o->estimator;
+	ctx c = {s, f->accel, &f->lights, o, est,
+	         {s, f->accel, map, f->pi, o->k, o->classical_norm}};
 	pm_camera cam;
 	int W, H, fail = 0;
 	size_t npx;
 
-	if (o->estimator != PM_EST_PATH && !map)
-		return pm_seterr(err, "the %s estimate needs a photon map", pm_estimator_name(o->estimator));
-	if (o->estimator == PM_EST_COMPENSATED && !pi)
-		return pm_seterr(err, "the compensated estimate needs a polygon index");
+	if ((est->needs & PM_NEEDS_MAP) && !map)
+		return pm_seterr(err, "the %s estimate needs a photon map", est->name);
+	if ((est->needs & PM_NEEDS_POLYINDEX) && !f->pi)
+		return pm_seterr(err, "the %s estimate needs a polygon index", est->name);
 	if (o->classical_norm != PM_NORM_K && o->classical_norm != PM_NORM_K1)
 		return pm_seterr(err, "unknown classical normalisation %d", o->classical_norm);
 	if (pm_camera_init(&cam, &s->camera, err) != 0)
@@ -314,17 +200,21 @@ pm_render(const pm_scene *s, const pm_accel *a, const pm_lights *L,
 	npx = (size_t)W * H;
 	if (pm_image_init(img, W, H, PM_RENDER_NCHAN, pm_render_chans, err) != 0)
 		return -1;
-	if (o->estimator == PM_EST_PHOTONS)
-		return render_photons(s, a, map, &cam, o, img, err);
+	if (est->image) {
+		if (est->image(&c.in, &cam, img, err) != 0) {
+			pm_image_free(img);
+			return -1;
+		}
+		if (o->progress)
+			o->progress(o->progress_arg, (uint64_t)H, (uint64_t)H);
+		return 0;
+	}
 
 	int rows_done = 0;
 	#pragma omp parallel reduction(|:fail)
 	{
-		scratch sc = {0};
-		sc.nn = malloc((size_t)(o->k > 0 ? o->k : 1) * sizeof *sc.nn);
-		if (o->estimator == PM_EST_COMPENSATED)
-			sc.comp = pm_comp_scratch_new(o->k);
-		if (!sc.nn || (o->estimator == PM_EST_COMPENSATED && !sc.comp))
+		void *sc = est->scratch_new ? est->scratch_new(o->k) : NULL;
+		if (est->scratch_new && !sc)
 			fail = 1;
 		#pragma omp for schedule(dynamic, 1)
 		for (int y = 0; y < H; y++) {
@@ -340,7 +230,7 @@ pm_render(const pm_scene *s, const pm_accel *a, const pm_lights *L,
 				for (int k = 0; k < o->spp; k++) {
 					sample smp;
 					float sx = (float)x + pm_rng_f(&r), sy = (float)y + pm_rng_f(&r);
-					trace(&c, &sc, cam.eye, pm_camera_dir(&cam, sx, sy), &r, &smp);
+					trace(&c, sc, cam.eye, pm_camera_dir(&cam, sx, sy), &r, &smp);
 					if (!finite_sample(&smp))
 						continue;
 					dsum = pm_add(dsum, smp.direct);
@@ -375,9 +265,8 @@ pm_render(const pm_scene *s, const pm_accel *a, const pm_lights *L,
 			if (o->progress && omp_get_thread_num() == 0)
 				o->progress(o->progress_arg, (uint64_t)done, (uint64_t)H);
 		}
-		free(sc.nn);
-		if (sc.comp)
-			pm_comp_scratch_free(sc.comp);
+		if (sc)
+			est->scratch_free(sc);
 	}
 	if (fail) {
 		pm_image_free(img);

@@ -5,10 +5,10 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "accel.h"
 #include "estimate.h"
+#include "estimators.h"
+#include "frame.h"
 #include "image.h"
-#include "light.h"
 #include "pass.h"
 #include "passid.h"
 #include "photon.h"
@@ -18,16 +18,36 @@
 #include "options.h"
 #include "util.h"
 
-static const char usage[] =
-	"pm-render SCENE [MAP|-] [-e classical|compensated|path|photons] [-k K] [--classical-norm k|k-1] [-p SAMPLES] "
-	"[-P I/N] [-s SEED] [-t TIME] [-j THREADS] [-q] [--force] -o OUT.exr";
+static const char est_default[] = "compensated";
+static char usage[512], est_help[512];
+
+/* The usage line and -e's help, with the estimators from their table. */
+static void
+make_usage(void)
+{
+	char names[256] = "";
+	size_t n = 0;
+
+	for (const pm_estimator *e = pm_estimators; e->name; e++) {
+		int w = snprintf(names + n, sizeof names - n, "%s%s", n ? "|" : "", e->name);
+		if (w < 0 || (size_t)w >= sizeof names - n)
+			break;
+		n += (size_t)w;
+	}
+	snprintf(usage, sizeof usage,
+	         "pm-render SCENE [MAP|-] [-e %s] [-k K] [--classical-norm k|k-1] [-p SAMPLES] "
+	         "[-P I/N] [-s SEED] [-t TIME] [-j THREADS] [-q] [--force] -o OUT.exr", names);
+	n = (size_t)snprintf(est_help, sizeof est_help, "estimator:");
+	for (const pm_estimator *e = pm_estimators; e->name && n < sizeof est_help; e++)
+		n += (size_t)snprintf(est_help + n, sizeof est_help - n, " %s: %s;", e->name, e->help);
+	if (n > 0 && n < sizeof est_help && est_help[n - 1] == ';')
+		est_help[n - 1] = 0;
+}
 
 enum { FORCE = OPT_LONG, MAX_SAMPLES, CLASSICAL_NORM };
 
 static const opt opts[] = {
-	{ 'e', "estimator", "EST", "estimator: classical, compensated, path or photons; "
-	  "path is an unbiased path tracer and needs no MAP; "
-	  "photons shows MAP's photons as seen from the camera", "compensated", 0 },
+	{ 'e', "estimator", "EST", est_help, est_default, 0 },
 	{ 'j', "threads", "THREADS", "threads, 0 for all cores; the output does not depend on it", "0", 1 },
 	{ 'k', "neighbours", "K", "nearest photons per estimate", "50", 0 },
 	{ CLASSICAL_NORM, "classical-norm", "k|k-1", "the classical estimate's flux over pi r^2: of "
@@ -79,7 +99,7 @@ is_photon_file(const char *path)
 int
 main(int argc, char **argv)
 {
-	pm_render_opts o = {.estimator = PM_EST_COMPENSATED, .k = 50, .spp = 4};
+	pm_render_opts o = {.estimator = pm_estimator_find(est_default), .k = 50, .spp = 4};
 	const char *out = NULL, *mapname = NULL;
 	int c, threads = 0, force = 0, have_time = 0, have_seed = 0, quiet = 0, max_spp = 65536;
 	uint32_t pass_i = 0, pass_n = 0;
@@ -87,19 +107,17 @@ main(int argc, char **argv)
 	float time = 0;
 	pm_scene s;
 	pm_photons map = {0};
-	pm_vec3 *verts;
-	pm_accel *a;
-	pm_lights L;
-	pm_polyindex *pi = NULL;
+	pm_frame fr;
 	pm_image img;
 	pm_error err;
 	char buf[64], *hist;
 
+	make_usage();
 	opt_init(&render, argc, argv);
 	while ((c = opt_next(&render, argc, argv)) != -1) {
 		switch (c) {
 		case 'e':
-			if ((o.estimator = pm_estimator_parse(optarg)) < 0)
+			if (!(o.estimator = pm_estimator_find(optarg)))
 				usage_err(usage, "-e: unknown estimator '%s'", optarg);
 			break;
 		case FORCE: force = 1; break;
@@ -127,14 +145,14 @@ main(int argc, char **argv)
 		usage_err(usage, "too many arguments");
 	if (argc - optind == 2)
 		mapname = argv[optind + 1];
-	if (!mapname && o.estimator != PM_EST_PATH)
+	if (!mapname && (o.estimator->needs & PM_NEEDS_MAP))
 		usage_err(usage, "the %s estimate needs a photon map (or use -e path)",
-		          pm_estimator_name(o.estimator));
+		          o.estimator->name);
 	if (!out)
 		usage_err(usage, "no output given (-o OUT.exr)");
-	if (o.classical_norm == PM_NORM_K1 && o.estimator != PM_EST_CLASSICAL)
+	if (o.classical_norm == PM_NORM_K1 && !(o.estimator->needs & PM_TAKES_NORM))
 		usage_err(usage, "--classical-norm k-1 is for -e classical, not %s",
-		          pm_estimator_name(o.estimator));
+		          o.estimator->name);
 	if (o.classical_norm == PM_NORM_K1 && o.k < 2)
 		usage_err(usage, "--classical-norm k-1 needs -k 2 or more (one photon would give 0)");
 	if (o.spp > max_spp)
@@ -166,19 +184,12 @@ main(int argc, char **argv)
 		if (!have_time)
 			time = (float)map.h.time;
 	}
-	verts = malloc((s.nverts ? s.nverts : 1) * sizeof *verts);
-	if (!verts)
-		die("out of memory");
-	pm_scene_verts_at(&s, time, verts);
-	if (pm_accel_build(&a, &s, verts, &err) != 0 || pm_lights_build(&L, &s, verts, time, &err) != 0)
-		die_err(&err);
-	/* The index serves the compensated estimate and the edge layer. */
-	if (mapname && o.estimator != PM_EST_PHOTONS && pm_polyindex_build(&pi, &s, verts, &err) != 0)
+	if (pm_frame_build(&fr, &s, time, o.estimator->needs, &err) != 0)
 		die_err(&err);
 	progress_start(&bar, "rows", (uint64_t)s.camera.height, quiet);
 	o.progress = progress_hook;
 	o.progress_arg = &bar;
-	if (pm_render(&s, a, &L, mapname ? &map : NULL, pi, &o, &img, &err) != 0)
+	if (pm_render(&fr, mapname ? &map : NULL, &o, &img, &err) != 0)
 		die_err(&err);
 	progress_end(&bar, (uint64_t)s.camera.height);
 
@@ -202,20 +213,17 @@ main(int argc, char **argv)
 	setattr(&img, "pm.emitted", buf);
 	snprintf(buf, sizeof buf, "%016" PRIx64, s.view_hash);
 	setattr(&img, "pm.scene_hash", buf);
-	setattr(&img, "pm.estimator", pm_estimator_name(o.estimator));
+	setattr(&img, "pm.estimator", o.estimator->name);
 	snprintf(buf, sizeof buf, "%d", o.k);
 	setattr(&img, "pm.k", buf);
-	snprintf(buf, sizeof buf, "%016" PRIx64, pm_pass_id(s.view_hash, pm_estimator_name(o.estimator),
+	snprintf(buf, sizeof buf, "%016" PRIx64, pm_pass_id(s.view_hash, o.estimator->name,
 	                                                     o.seed, time, map.h.seeds));
 	setattr(&img, "pm.pass_ids", buf);
 	if (pm_image_write_exr(&img, out, &err) != 0)
 		die_err(&err);
 
 	pm_image_free(&img);
-	pm_polyindex_free(pi);
-	pm_lights_free(&L);
-	pm_accel_free(a);
-	free(verts);
+	pm_frame_free(&fr);
 	pm_photons_free(&map);
 	pm_scene_free(&s);
 	return 0;

@@ -5,9 +5,8 @@
 #include <string.h>
 #include <unistd.h>
 
-#include "accel.h"
 #include "atomic.h"
-#include "light.h"
+#include "frame.h"
 #include "pass.h"
 #include "photon.h"
 #include "scene.h"
@@ -51,9 +50,7 @@ main(int argc, char **argv)
 	uint32_t pass_i = 0, pass_n = 0;
 	progress bar;
 	pm_scene s;
-	pm_vec3 *verts;
-	pm_accel *a;
-	pm_lights L;
+	pm_frame fr;
 	pm_photons ph;
 	pm_out fo;
 	pm_error err;
@@ -85,16 +82,12 @@ main(int argc, char **argv)
 
 	if (pm_scene_load(&s, argv[optind], &err) != 0)
 		die_err(&err);
-	verts = malloc((s.nverts ? s.nverts : 1) * sizeof *verts);
-	if (!verts)
-		die("out of memory");
-	pm_scene_verts_at(&s, o.time, verts);
-	if (pm_accel_build(&a, &s, verts, &err) != 0 || pm_lights_build(&L, &s, verts, o.time, &err) != 0)
+	if (pm_frame_build(&fr, &s, o.time, 0, &err) != 0)
 		die_err(&err);
 	progress_start(&bar, "photons", o.nphotons, quiet);
 	o.progress = progress_hook;
 	o.progress_arg = &bar;
-	if (pm_shoot(&s, a, &L, &o, &ph, &err) != 0)
+	if (pm_shoot(&s, fr.accel, &fr.lights, &o, &ph, &err) != 0)
 		die_err(&err);
 	progress_end(&bar, ph.h.count);
 	if (ph.h.count < o.nphotons && !quiet)
@@ -112,9 +105,7 @@ main(int argc, char **argv)
 	if (pm_out_commit(&fo, &err) != 0)
 		die_err(&err);
 	pm_photons_free(&ph);
-	pm_lights_free(&L);
-	pm_accel_free(a);
-	free(verts);
+	pm_frame_free(&fr);
 	pm_scene_free(&s);
 	return 0;
 }
