@@ -13,7 +13,7 @@
 
 #include "err.h"
 #include "kdtree.h"
-#include "photon.h"
+#include "photonfile.h"
 #include "scene.h"
 #include "vec.h"
 

@@ -17,7 +17,7 @@
 #include "estimate.h"
 #include "image.h"
 #include "light.h"
-#include "photon.h"
+#include "photonfile.h"
 #include "progress.h"
 #include "scene.h"
 

@@ -14,7 +14,7 @@
 #include <sys/stat.h>
 
 #include "mesh.h"
-#include "photon.h"
+#include "photonfile.h"
 #include "scene_id.h"
 #include "scene_poly.h"
 #include "scene_shape.h"

@@ -13,7 +13,7 @@
 #include "atomic.h"
 #include "image.h"
 #include "kdtree.h"
-#include "photon.h"
+#include "photonfile.h"
 #include "util.h"
 
 static const char usage[] =

@@ -12,7 +12,7 @@
 #include "light.h"
 #include "pass.h"
 #include "passid.h"
-#include "photon.h"
+#include "photonfile.h"
 #include "render.h"
 #include "scene.h"
 #include "progress.h"

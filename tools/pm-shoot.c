@@ -10,7 +10,7 @@
 #include "atomic.h"
 #include "light.h"
 #include "pass.h"
-#include "photon.h"
+#include "photonfile.h"
 #include "scene.h"
 #include "shoot.h"
 #include "progress.h"

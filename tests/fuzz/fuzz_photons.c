@@ -8,7 +8,7 @@
 #include <string.h>
 
 #include "fuzz.h"
-#include "photon.h"
+#include "photonfile.h"
 
 static FILE *
 open_input(const uint8_t *data, size_t size)
