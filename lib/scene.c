@@ -42,6 +42,8 @@ typedef struct {
 	char **tok;         /* the current line's tokens */
 	int ntok, pos;
 	const char *stmt;   /* the statement's keyword, for messages */
+	char stmt_buf[600]; /* what stmt points to when it is not a token: it
+	                       outlives the statement function that wrote it */
 	/* capacities of the growing arrays in s */
 	size_t cap_mats, cap_objs, cap_lights, cap_verts, cap_polys, cap_pverts, cap_tris;
 	void *work;         /* triangulation scratch */
@@ -320,8 +322,8 @@ st_material(parser *p)
 	};
 	unsigned seen = 0;
 	double d;
-	char stmt[96];
-	snprintf(stmt, sizeof stmt, "material '%s'", name);
+	const char *stmt = p->stmt_buf;
+	snprintf(p->stmt_buf, sizeof p->stmt_buf, "material '%s'", name);
 	p->stmt = stmt;
 	m.ks = pm_v3(1, 1, 1);  /* glass tint when none is given */
 	while (peek(p)) {
@@ -826,9 +828,8 @@ st_mesh(parser *p)
 	}
 	pm_shape sh = {md.nverts, md.verts, md.nfaces, md.face_start, md.face_vert};
 	/* Messages about the mesh's geometry name the file. */
-	char stmt[600];
-	snprintf(stmt, sizeof stmt, "mesh '%s'", path);
-	p->stmt = stmt;
+	snprintf(p->stmt_buf, sizeof p->stmt_buf, "mesh '%s'", path);
+	p->stmt = p->stmt_buf;
 	int r = add_object(p, mat, &sh, &t, md.closed, 0);
 	pm_mesh_free(&md);
 	free(path);
