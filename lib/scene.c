@@ -13,6 +13,7 @@
 #include <strings.h>
 #include <sys/stat.h>
 
+#include "maxpixels.h"
 #include "mesh.h"
 #include "photonfile.h"
 #include "scene_id.h"
@@ -236,7 +237,7 @@ st_camera(parser *p)
 					return perr(p, "camera: size must be whole numbers from 1 to 65535, got %g", d[i]);
 			c->width = (int)d[0];
 			c->height = (int)d[1];
-			uint64_t lim = pm_scene_max_pixels();
+			uint64_t lim = pm_max_pixels();
 			if ((uint64_t)c->width * (uint64_t)c->height > lim)
 				return perr(p, "camera: size %dx%d is more than %llu pixels "
 				            "(a typo? set PM_MAX_PIXELS to allow more)",
@@ -998,23 +999,6 @@ out:
 	if (r)
 		pm_scene_free(s);
 	return r;
-}
-
-uint64_t
-pm_scene_max_pixels(void)
-{
-	const char *e = getenv("PM_MAX_PIXELS");
-	char *end;
-	unsigned long long v;
-
-	if (!e || !*e)
-		return PM_MAX_PIXELS;
-	errno = 0;
-	v = strtoull(e, &end, 10);
-	/* A malformed override keeps the default rather than lifting it. */
-	if (errno || *end || e[0] == '-' || v < 1)
-		return PM_MAX_PIXELS;
-	return v;
 }
 
 void
