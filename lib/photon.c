@@ -12,7 +12,7 @@ _Static_assert(sizeof(pm_photon) == PM_PHOTON_BYTES, "pm_photon must be 20 bytes
 _Static_assert(sizeof(float) == 4 && FLT_MANT_DIG == 24 && FLT_MAX_EXP == 128,
                "the record stores IEEE 754 binary32 positions");
 
-/* Bit fields of the 64-bit word (formats/photons.md, "The record"). */
+/* Bit fields of the 64-bit word (formats/photons.md, "Record"). */
 #define POW_BITS 10
 #define EXP_SHIFT 30
 #define DIR_U_SHIFT 38

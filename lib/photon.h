@@ -1,4 +1,4 @@
-/* photon.h — the 20-byte photon record (formats/photons.md, "The record");
+/* photon.h — the 20-byte photon record (formats/photons.md, "Record");
  * the file around the records is photonfile.h.
  *
  * A photon is a position (3 x float32), a power (three 10-bit mantissas with
