@@ -11,8 +11,7 @@ struct pm_accel {
 	RTCDevice dev;
 	RTCScene scn;
 	const pm_scene *s;
-	float extent;       /* bbox diagonal */
-	float eps_abs;      /* offset floor from the scene size */
+	float eps_abs;      /* offset floor from the scene size (its bbox diagonal) */
 };
 
 static const char *
@@ -84,8 +83,7 @@ pm_accel_build(pm_accel **out, const pm_scene *s, const pm_vec3 *verts, pm_error
 		pm_accel_free(a);
 		return pm_seterr(err, "embree: %s", rtc_errstr(e));
 	}
-	a->extent = pm_len(pm_sub(hi, lo));
-	a->eps_abs = 1e-5f * a->extent;
+	a->eps_abs = 1e-5f * pm_len(pm_sub(hi, lo));
 	*out = a;
 	return 0;
 }
@@ -163,10 +161,4 @@ pm_accel_offset(const pm_accel *a, pm_vec3 p, pm_vec3 ng, pm_vec3 d)
 {
 	float eps = pm_accel_eps(a, p);
 	return pm_add(p, pm_scale(ng, pm_dot(ng, d) >= 0 ? eps : -eps));
-}
-
-float
-pm_accel_extent(const pm_accel *a)
-{
-	return a->extent;
 }

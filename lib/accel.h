@@ -42,7 +42,4 @@ pm_vec3 pm_accel_offset(const pm_accel *a, pm_vec3 p, pm_vec3 ng, pm_vec3 d);
  * shadow ray must stop so as not to hit the target's own surface. */
 float pm_accel_eps(const pm_accel *a, pm_vec3 p);
 
-/* The scene's bounding box diagonal at this time. */
-float pm_accel_extent(const pm_accel *a);
-
 #endif

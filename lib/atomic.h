@@ -16,9 +16,10 @@
  * SIGINT, SIGTERM and SIGHUP); only SIGKILL during the named fallback can
  * leave one behind. PM_ATOMIC_NAMED=1 in the environment forces the named
  * fallback (for tests). */
-#define PM_TMP_MARK ".pm-tmp-"
 #ifndef PM_ATOMIC_H
 #define PM_ATOMIC_H
+
+#define PM_TMP_MARK ".pm-tmp-"
 
 #include <stdio.h>
 

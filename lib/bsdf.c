@@ -178,14 +178,3 @@ pm_bsdf_pdf(const pm_material *m, pm_vec3 n, pm_vec3 wi, pm_vec3 wo)
 	default: return 0.0f;
 	}
 }
-
-float
-pm_bsdf_albedo(const pm_material *m)
-{
-	switch (m->kind) {
-	case PM_MAT_DIFFUSE: return pm_maxc(m->kd);
-	case PM_MAT_GLOSSY: return pm_maxc(pm_add(m->kd, m->ks));
-	case PM_MAT_MIRROR: return pm_maxc(m->ks);
-	default: return 1.0f;
-	}
-}

@@ -32,10 +32,6 @@ int pm_bsdf_sample(const pm_material *m, pm_vec3 ng, pm_vec3 wo, pm_rng *r,
  * multiple importance sampling (0 for mirror and glass). n on wo's side. */
 float pm_bsdf_pdf(const pm_material *m, pm_vec3 n, pm_vec3 wi, pm_vec3 wo);
 
-/* Directional albedo used for Russian roulette in the light pass: the
- * largest channel of the material's total reflectance (kd + ks, ks, ...). */
-float pm_bsdf_albedo(const pm_material *m);
-
 /* Sampling helpers. */
 pm_vec3 pm_sample_cosine(pm_vec3 n, float u1, float u2);
 pm_vec3 pm_sample_sphere(float u1, float u2);

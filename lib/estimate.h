@@ -13,7 +13,7 @@
 #define PM_ESTIMATE_H
 
 #include "kdtree.h"
-#include "photon.h"
+#include "photonfile.h"
 #include "scene.h"
 #include "vec.h"
 

@@ -22,13 +22,14 @@
 #include <openexr.h>
 
 #include "atomic.h"
-#include "scene.h"
+#include "maxpixels.h"
 #include "version.h"
 
 /* Limits a reader trusts before allocating: the pixels a scene may ask
- * for (PM_MAX_PIXELS, 2^25 unless the environment says otherwise: scene.h),
+ * for (PM_MAX_PIXELS, 2^25 unless the environment says otherwise:
+ * maxpixels.h),
  * 256 channels, 2^30 samples (4 GiB of floats). */
-#define MAX_PIXELS   ((int64_t)pm_scene_max_pixels())
+#define MAX_PIXELS   ((int64_t)pm_max_pixels())
 #define MAX_CHANNELS 256
 #define MAX_SAMPLES  ((int64_t)1 << 30)
 

@@ -86,8 +86,9 @@ pm_lights_free(pm_lights *L)
 	L->n = 0;
 }
 
-int
-pm_lights_pick(const pm_lights *L, float u, float *pdf)
+/* Picks a light in proportion to power; *pdf is its probability. */
+static int
+lights_pick(const pm_lights *L, float u, float *pdf)
 {
 	int lo = 0, hi = L->n - 1;
 
@@ -114,7 +115,7 @@ void
 pm_lights_emit(const pm_lights *L, pm_rng *r, pm_vec3 *o, pm_vec3 *d, pm_vec3 *n, pm_vec3 *power)
 {
 	float pdf;
-	const pm_light *l = &L->l[pm_lights_pick(L, pm_rng_f(r), &pdf)];
+	const pm_light *l = &L->l[lights_pick(L, pm_rng_f(r), &pdf)];
 	float u1 = pm_rng_f(r), u2 = pm_rng_f(r), u3 = pm_rng_f(r), u4 = pm_rng_f(r);
 
 	*power = pm_scale(l->power, 1.0f / pdf);
@@ -138,7 +139,7 @@ pm_lights_sample(const pm_lights *L, pm_vec3 x, pm_rng *r, pm_vec3 *wi, float *d
                  pm_vec3 *li, float *spdf)
 {
 	float pdf;
-	const pm_light *l = &L->l[pm_lights_pick(L, pm_rng_f(r), &pdf)];
+	const pm_light *l = &L->l[lights_pick(L, pm_rng_f(r), &pdf)];
 	float u1 = pm_rng_f(r), u2 = pm_rng_f(r);
 	pm_vec3 p, v;
 	float d2, d, cl;

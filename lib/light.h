@@ -33,9 +33,6 @@ typedef struct pm_lights {
 int pm_lights_build(pm_lights *L, const pm_scene *s, const pm_vec3 *verts, float t, pm_error *err);
 void pm_lights_free(pm_lights *L);
 
-/* Picks a light in proportion to power; *pdf is its probability. */
-int pm_lights_pick(const pm_lights *L, float u, float *pdf);
-
 /* Light pass: one photon's start. *power is the power it carries per emitted
  * path (the light's power divided by the probability of picking it). */
 void pm_lights_emit(const pm_lights *L, pm_rng *r, pm_vec3 *o, pm_vec3 *d, pm_vec3 *n, pm_vec3 *power);

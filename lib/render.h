@@ -17,7 +17,7 @@
 #include "estimators.h"
 #include "frame.h"
 #include "image.h"
-#include "photon.h"
+#include "photonfile.h"
 #include "progress.h"
 
 typedef struct pm_render_opts {

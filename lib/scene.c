@@ -1,7 +1,7 @@
-/* scene.c — loads the scene text format (formats/scene.md) into a pm_scene:
- * tokenizes and checks each statement, builds objects' polygons through the
- * shapes of scene_shape.c or mesh files (mesh.h), transforms them to world
- * space, and derives normals and triangles (scene_poly.h). */
+/* scene.c — the parsing half of the scene loader: reads the scene text
+ * format (formats/scene.md) line by line, tokenizes and checks each
+ * statement, loads mesh files (mesh.h) and shapes (scene_shape.h), and hands
+ * the checked values to scene_build.h, which owns the arrays. */
 #include "scene.h"
 
 #include <errno.h>
@@ -13,25 +13,15 @@
 #include <strings.h>
 #include <sys/stat.h>
 
+#include "maxpixels.h"
 #include "mesh.h"
-#include "photon.h"
+#include "photonfile.h"
+#include "scene_build.h"
 #include "scene_id.h"
-#include "scene_poly.h"
-#include "scene_shape.h"
 
 /* Bounds on what a scene may ask for; see formats/scene.md. */
 #define MAX_FILE (64u << 20)        /* scene file bytes */
 #define MAX_LINE 65536u             /* bytes in one line */
-#define MAX_MATS 65536
-#define MAX_OBJS (1 << 24)
-#define MAX_LIGHTS (1 << 20)
-#define MAX_VERTS (1u << 28)
-#define MAX_POLYS (1u << 28)
-#define MAX_TRIS (1u << 28)
-#define MAX_POLY_VERTS (1u << 30)   /* polygon corners in all */
-
-/* One affine map x -> m[0..2][0..2] x + m[.][3]. */
-typedef struct { double m[3][4]; } xform;
 
 typedef struct {
 	pm_scene *s;
@@ -42,12 +32,9 @@ typedef struct {
 	char **tok;         /* the current line's tokens */
 	int ntok, pos;
 	const char *stmt;   /* the statement's keyword, for messages */
-	/* capacities of the growing arrays in s */
-	size_t cap_mats, cap_objs, cap_lights, cap_verts, cap_polys, cap_pverts, cap_tris;
-	void *work;         /* triangulation scratch */
-	size_t work_size;
-	uint32_t (*tribuf)[3];
-	size_t tribuf_n;
+	char stmt_buf[600]; /* what stmt points to when it is not a token: it
+	                       outlives the statement function that wrote it */
+	pm_scene_build *b;  /* the arrays, grown as statements are read */
 	int have_camera, have_threshold;
 } parser;
 
@@ -65,24 +52,11 @@ perr(parser *p, const char *fmt, ...)
 	return pm_seterr(p->err, "%s:%d: %s", p->path, p->line, msg);
 }
 
-/* Grows *arr to hold at least need elements of size elem. */
+/* A builder's message, at the current line. */
 static int
-grow(parser *p, void *arrp, size_t *cap, size_t need, size_t elem)
+berr(parser *p, const pm_error *e)
 {
-	void **arr = arrp;
-	if (need <= *cap)
-		return 0;
-	size_t n = *cap ? *cap : 16;
-	while (n < need)
-		n = n > SIZE_MAX / 2 ? need : n * 2;
-	if (n > SIZE_MAX / elem)
-		return perr(p, "out of memory");
-	void *q = realloc(*arr, n * elem);
-	if (!q)
-		return perr(p, "out of memory");
-	*arr = q;
-	*cap = n;
-	return 0;
+	return perr(p, "%s", e->msg);
 }
 
 /* ---- numbers and tokens ---- */
@@ -234,7 +208,7 @@ st_camera(parser *p)
 					return perr(p, "camera: size must be whole numbers from 1 to 65535, got %g", d[i]);
 			c->width = (int)d[0];
 			c->height = (int)d[1];
-			uint64_t lim = pm_scene_max_pixels();
+			uint64_t lim = pm_max_pixels();
 			if ((uint64_t)c->width * (uint64_t)c->height > lim)
 				return perr(p, "camera: size %dx%d is more than %llu pixels "
 				            "(a typo? set PM_MAX_PIXELS to allow more)",
@@ -320,8 +294,8 @@ st_material(parser *p)
 	};
 	unsigned seen = 0;
 	double d;
-	char stmt[96];
-	snprintf(stmt, sizeof stmt, "material '%s'", name);
+	const char *stmt = p->stmt_buf;
+	snprintf(p->stmt_buf, sizeof p->stmt_buf, "material '%s'", name);
 	p->stmt = stmt;
 	m.ks = pm_v3(1, 1, 1);  /* glass tint when none is given */
 	while (peek(p)) {
@@ -373,11 +347,9 @@ st_material(parser *p)
 		if (!(t.x <= 1 && t.y <= 1 && t.z <= 1))
 			return perr(p, "%s: kd + ks exceeds 1 (the surface would create energy)", stmt);
 	}
-	if (s->nmats >= MAX_MATS)
-		return perr(p, "material: more than %d materials", MAX_MATS);
-	if (grow(p, &s->mats, &p->cap_mats, (size_t)s->nmats + 1, sizeof *s->mats))
-		return -1;
-	s->mats[s->nmats++] = m;
+	pm_error e;
+	if (pm_build_material(p->b, &m, &e))
+		return berr(p, &e);
 	return 0;
 }
 
@@ -411,54 +383,17 @@ st_pointlight(parser *p)
 	}
 	if (!have_power)
 		return perr(p, "pointlight: missing 'power'");
-	pm_scene *s = p->s;
-	if (s->nlights >= MAX_LIGHTS)
-		return perr(p, "pointlight: more than %d point lights", MAX_LIGHTS);
-	if (grow(p, &s->lights, &p->cap_lights, (size_t)s->nlights + 1, sizeof *s->lights))
-		return -1;
-	s->lights[s->nlights++] = l;
+	pm_error e;
+	if (pm_build_light(p->b, &l, &e))
+		return berr(p, &e);
 	return 0;
-}
-
-/* ---- transforms ---- */
-
-static void
-xf_identity(xform *x)
-{
-	memset(x, 0, sizeof *x);
-	x->m[0][0] = x->m[1][1] = x->m[2][2] = 1;
-}
-
-/* x = a then x (a applied after what x already does). */
-static void
-xf_then(xform *x, const double a[3][4])
-{
-	xform r;
-	for (int i = 0; i < 3; i++) {
-		for (int j = 0; j < 4; j++) {
-			double v = j == 3 ? a[i][3] : 0;
-			for (int k = 0; k < 3; k++)
-				v += a[i][k] * x->m[k][j];
-			r.m[i][j] = v;
-		}
-	}
-	*x = r;
-}
-
-static double
-xf_det(const xform *x)
-{
-	const double (*m)[4] = x->m;
-	return m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1])
-		- m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0])
-		+ m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0]);
 }
 
 /* The words after an object's own coordinates: transforms in the order
  * written, one optional 'move', and the shape's own flags (inward for box,
  * subdiv for sphere). */
 typedef struct {
-	xform xf;
+	pm_xform xf;
 	pm_vec3 motion;
 	int inward;   /* -1: not allowed */
 	int subdiv;   /* -1: not allowed */
@@ -468,7 +403,7 @@ static int
 parse_tail(parser *p, tail *t)
 {
 	int have_move = 0, have_subdiv = 0;
-	xf_identity(&t->xf);
+	pm_xform_identity(&t->xf);
 	t->motion = pm_v3(0, 0, 0);
 	while (peek(p)) {
 		const char *w = peek(p);
@@ -486,7 +421,7 @@ parse_tail(parser *p, tail *t)
 				if (a[i][i] == 0)
 					return perr(p, "%s: scale must not be zero", p->stmt);
 			}
-			xf_then(&t->xf, a);
+			pm_xform_then(&t->xf, a);
 		} else if (!strcmp(w, "rotate")) {
 			p->pos++;
 			if (numbers(p, 4, d, "'rotate'"))
@@ -503,7 +438,7 @@ parse_tail(parser *p, tail *t)
 			a[0][1] -= sn * k[2]; a[0][2] += sn * k[1];
 			a[1][0] += sn * k[2]; a[1][2] -= sn * k[0];
 			a[2][0] -= sn * k[1]; a[2][1] += sn * k[0];
-			xf_then(&t->xf, a);
+			pm_xform_then(&t->xf, a);
 		} else if (!strcmp(w, "translate")) {
 			p->pos++;
 			if (numbers(p, 3, d, "'translate'"))
@@ -512,7 +447,7 @@ parse_tail(parser *p, tail *t)
 				a[i][i] = 1;
 				a[i][3] = d[i];
 			}
-			xf_then(&t->xf, a);
+			pm_xform_then(&t->xf, a);
 		} else if (!strcmp(w, "move")) {
 			p->pos++;
 			if (have_move++)
@@ -539,167 +474,15 @@ parse_tail(parser *p, tail *t)
 	return 0;
 }
 
-/* ---- building objects ---- */
-
-static int
-add_polygon(parser *p, const uint32_t *idx, uint32_t n, pm_dvec3 nrm, uint32_t obj)
-{
-	pm_scene *s = p->s;
-	if (s->npolys >= MAX_POLYS)
-		return perr(p, "%s: more than %u polygons in the scene", p->stmt, MAX_POLYS);
-	uint32_t first = s->npolys ? s->poly_start[s->npolys] : 0;
-	if ((uint64_t)first + n > MAX_POLY_VERTS)
-		return perr(p, "%s: more than %u polygon corners in the scene", p->stmt, MAX_POLY_VERTS);
-	size_t need = (size_t)s->npolys + 2, c1 = p->cap_polys, c2 = p->cap_polys;
-	if (grow(p, &s->poly_start, &p->cap_polys, need, sizeof *s->poly_start)
-	    || grow(p, &s->poly_obj, &c1, need, sizeof *s->poly_obj)
-	    || grow(p, &s->poly_normal, &c2, need, sizeof *s->poly_normal))
-		return -1;
-	if (grow(p, &s->poly_vert, &p->cap_pverts, (size_t)first + n, sizeof *s->poly_vert))
-		return -1;
-	memcpy(s->poly_vert + first, idx, n * sizeof *idx);
-	double l = pm_dlen(nrm);
-	s->poly_start[s->npolys] = first;
-	s->poly_start[s->npolys + 1] = first + n;
-	s->poly_obj[s->npolys] = obj;
-	s->poly_normal[s->npolys] = pm_v3((float)(nrm.x / l), (float)(nrm.y / l), (float)(nrm.z / l));
-	s->npolys++;
-	return 0;
-}
-
-static int
-add_triangle(parser *p, const uint32_t t[3])
-{
-	pm_scene *s = p->s;
-	if (s->ntris >= MAX_TRIS)
-		return perr(p, "%s: more than %u triangles in the scene", p->stmt, MAX_TRIS);
-	size_t c1 = p->cap_tris;
-	if (grow(p, &s->tris, &p->cap_tris, (size_t)s->ntris + 1, sizeof *s->tris)
-	    || grow(p, &s->tri_poly, &c1, (size_t)s->ntris + 1, sizeof *s->tri_poly))
-		return -1;
-	memcpy(s->tris[s->ntris], t, sizeof s->tris[0]);
-	s->tri_poly[s->ntris] = s->npolys - 1;
-	s->ntris++;
-	return 0;
-}
-
-/* Adds one face (scene vertex indices, already in front winding): drops it
- * if it has no area, keeps it whole if planar, else splits it. */
-static int
-add_face(parser *p, uint32_t *idx, uint32_t n, uint32_t obj)
-{
-	const pm_vec3 *v = p->s->verts;
-	uint32_t m = 0;
-
-	/* Repeated positions in a row (and around the end) would make zero
-	 * length edges. */
-	for (uint32_t i = 0; i < n; i++) {
-		pm_vec3 a = v[idx[i]];
-		if (m > 0) {
-			pm_vec3 b = v[idx[m - 1]];
-			if (a.x == b.x && a.y == b.y && a.z == b.z)
-				continue;
-		}
-		idx[m++] = idx[i];
-	}
-	while (m > 1) {
-		pm_vec3 a = v[idx[m - 1]], b = v[idx[0]];
-		if (!(a.x == b.x && a.y == b.y && a.z == b.z))
-			break;
-		m--;
-	}
-	if (m < 3 || pm_poly_degenerate(v, idx, m))
-		return 0;
-
-	if (grow(p, &p->work, &p->work_size, PM_POLY_WORK_BYTES(m), 1)
-	    || grow(p, &p->tribuf, &p->tribuf_n, m, sizeof *p->tribuf))
-		return -1;
-	pm_dvec3 nrm = pm_poly_newell(v, idx, m);
-	uint32_t nt = pm_poly_triangulate(v, idx, m, nrm, p->tribuf, p->work);
-	if (pm_poly_planar(v, idx, m, nrm)) {
-		if (add_polygon(p, idx, m, nrm, obj))
-			return -1;
-		for (uint32_t i = 0; i < nt; i++)
-			if (add_triangle(p, p->tribuf[i]))
-				return -1;
-		return 0;
-	}
-	/* Not planar: every triangle becomes a polygon of its own. */
-	for (uint32_t i = 0; i < nt; i++) {
-		if (pm_poly_degenerate(v, p->tribuf[i], 3))
-			continue;
-		if (add_polygon(p, p->tribuf[i], 3, pm_poly_newell(v, p->tribuf[i], 3), obj)
-		    || add_triangle(p, p->tribuf[i]))
-			return -1;
-	}
-	return 0;
-}
-
 /* Appends an object made of the shape sh (its vertices in object space) with
  * tail t; solid says whether it is a closed surface. */
 static int
 add_object(parser *p, int mat, const pm_shape *sh, const tail *t, int solid, int flip)
 {
-	pm_scene *s = p->s;
-	if (s->nobjs >= MAX_OBJS)
-		return perr(p, "%s: more than %d objects", p->stmt, MAX_OBJS);
-	if ((uint64_t)s->nverts + sh->nverts > MAX_VERTS)
-		return perr(p, "%s: more than %u vertices in the scene", p->stmt, MAX_VERTS);
-	if (grow(p, &s->objs, &p->cap_objs, (size_t)s->nobjs + 1, sizeof *s->objs)
-	    || grow(p, &s->verts, &p->cap_verts, (size_t)s->nverts + sh->nverts, sizeof *s->verts))
-		return -1;
-
-	uint32_t base = s->nverts;
-	const double (*m)[4] = t->xf.m;
-	for (uint32_t i = 0; i < sh->nverts; i++) {
-		const double *x = sh->verts + 3 * (size_t)i;
-		double w[3];
-		for (int k = 0; k < 3; k++)
-			w[k] = m[k][0] * x[0] + m[k][1] * x[1] + m[k][2] * x[2] + m[k][3];
-		pm_vec3 f = pm_v3((float)w[0], (float)w[1], (float)w[2]);
-		if (!pm_vfinite(f) || fabs(w[0]) > 3e38 || fabs(w[1]) > 3e38 || fabs(w[2]) > 3e38)
-			return perr(p, "%s: vertex coordinates out of range", p->stmt);
-		s->verts[base + i] = f;
-	}
-	s->nverts += sh->nverts;
-
-	/* A mirroring transform turns counter-clockwise into clockwise:
-	 * reverse the faces so normals still point the way they did. */
-	if (xf_det(&t->xf) < 0)
-		flip = !flip;
-
-	pm_object *o = &s->objs[s->nobjs];
-	memset(o, 0, sizeof *o);
-	o->material = mat;
-	o->solid = solid;
-	o->motion = t->motion;
-	o->first_poly = s->npolys;
-	o->first_tri = s->ntris;
-	o->first_vert = base;
-	o->nverts = sh->nverts;
-	o->line = p->line;
-
-	uint32_t *idx = NULL;
-	size_t cap = 0;
-	for (uint32_t f = 0; f < sh->nfaces; f++) {
-		uint32_t a = sh->face_start[f], n = sh->face_start[f + 1] - a;
-		if (grow(p, &idx, &cap, n ? n : 1, sizeof *idx)) {
-			free(idx);
-			return -1;
-		}
-		for (uint32_t i = 0; i < n; i++)
-			idx[i] = base + sh->face_vert[a + (flip ? n - 1 - i : i)];
-		if (add_face(p, idx, n, (uint32_t)s->nobjs)) {
-			free(idx);
-			return -1;
-		}
-	}
-	free(idx);
-	o->npolys = s->npolys - o->first_poly;
-	o->ntris = s->ntris - o->first_tri;
-	if (o->npolys == 0)
-		return perr(p, "%s: no polygon with nonzero area", p->stmt);
-	s->nobjs++;
+	pm_build_obj ob = {sh, t->xf, t->motion, mat, solid, flip, p->line, p->stmt};
+	pm_error e;
+	if (pm_build_object(p->b, &ob, &e))
+		return berr(p, &e);
 	return 0;
 }
 
@@ -826,9 +609,8 @@ st_mesh(parser *p)
 	}
 	pm_shape sh = {md.nverts, md.verts, md.nfaces, md.face_start, md.face_vert};
 	/* Messages about the mesh's geometry name the file. */
-	char stmt[600];
-	snprintf(stmt, sizeof stmt, "mesh '%s'", path);
-	p->stmt = stmt;
+	snprintf(p->stmt_buf, sizeof p->stmt_buf, "mesh '%s'", path);
+	p->stmt = p->stmt_buf;
 	int r = add_object(p, mat, &sh, &t, md.closed, 0);
 	pm_mesh_free(&md);
 	free(path);
@@ -952,12 +734,16 @@ int
 pm_scene_load(pm_scene *s, const char *path, pm_error *err)
 {
 	parser p;
+	pm_scene_build b;
 	char *data = NULL;
 	size_t len = 0;
 	int r = -1;
 
 	memset(s, 0, sizeof *s);
 	memset(&p, 0, sizeof p);
+	memset(&b, 0, sizeof b);
+	b.s = s;
+	p.b = &b;
 	p.s = s;
 	p.err = err;
 	p.path = path;
@@ -992,28 +778,10 @@ out:
 	free(data);
 	free(p.dir);
 	free(p.tok);
-	free(p.work);
-	free(p.tribuf);
+	pm_build_free(&b);
 	if (r)
 		pm_scene_free(s);
 	return r;
-}
-
-uint64_t
-pm_scene_max_pixels(void)
-{
-	const char *e = getenv("PM_MAX_PIXELS");
-	char *end;
-	unsigned long long v;
-
-	if (!e || !*e)
-		return PM_MAX_PIXELS;
-	errno = 0;
-	v = strtoull(e, &end, 10);
-	/* A malformed override keeps the default rather than lifting it. */
-	if (errno || *end || e[0] == '-' || v < 1)
-		return PM_MAX_PIXELS;
-	return v;
 }
 
 void

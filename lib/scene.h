@@ -86,16 +86,9 @@ typedef struct pm_scene {
 	uint32_t *tri_poly;
 } pm_scene;
 
-/* The largest camera image (width x height) pm_scene_load accepts, so that
- * a typo in `size` (65535 65535) fails at once instead of allocating tens of
- * gigabytes: PM_MAX_PIXELS (2^25 = 33554432, room for 8K UHD), unless the
- * environment variable PM_MAX_PIXELS holds a whole number >= 1 (which may
- * raise or lower it). */
-#define PM_MAX_PIXELS (1ull << 25)
-uint64_t pm_scene_max_pixels(void);
-
 /* Loads a scene file; mesh paths in it are relative to the scene file's
- * directory. On failure err says "FILE:LINE: what is wrong" (or names the
+ * directory. A camera larger than pm_max_pixels() (maxpixels.h) is refused.
+ * On failure err says "FILE:LINE: what is wrong" (or names the
  * mesh file) and *s is left empty. */
 int pm_scene_load(pm_scene *s, const char *path, pm_error *err);
 void pm_scene_free(pm_scene *s);

@@ -24,8 +24,10 @@ pm_poly_newell(const pm_vec3 *v, const uint32_t *idx, uint32_t n)
 	return s;
 }
 
-void
-pm_poly_extent(const pm_vec3 *v, const uint32_t *idx, uint32_t n, double *size, double *mag)
+/* Size measures used for relative tolerances: the longest side of the
+ * bounding box, and the largest absolute coordinate. */
+static void
+poly_extent(const pm_vec3 *v, const uint32_t *idx, uint32_t n, double *size, double *mag)
 {
 	double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
 	double m = 0, s = 0;
@@ -48,7 +50,7 @@ pm_poly_degenerate(const pm_vec3 *v, const uint32_t *idx, uint32_t n)
 	double size, mag;
 	if (n < 3)
 		return 1;
-	pm_poly_extent(v, idx, n, &size, &mag);
+	poly_extent(v, idx, n, &size, &mag);
 	if (!(size > 0))
 		return 1;
 	double area2 = pm_dlen(pm_poly_newell(v, idx, n));
@@ -62,7 +64,7 @@ pm_poly_planar(const pm_vec3 *v, const uint32_t *idx, uint32_t n, pm_dvec3 nrm)
 	pm_dvec3 c = pm_dv3(0, 0, 0);
 	if (n <= 3)
 		return 1;
-	pm_poly_extent(v, idx, n, &size, &mag);
+	poly_extent(v, idx, n, &size, &mag);
 	pm_dvec3 u = pm_dscale(nrm, 1 / pm_dlen(nrm));
 	for (uint32_t i = 0; i < n; i++)
 		c = pm_dadd(c, pm_dfromf(v[idx[i]]));
@@ -116,7 +118,7 @@ pm_poly_triangulate(const pm_vec3 *v, const uint32_t *idx, uint32_t n, pm_dvec3 
 		p[2 * i + 1] = pm_ddot(d, bw);
 		rem[i] = i;
 	}
-	pm_poly_extent(v, idx, n, &size, &mag);
+	poly_extent(v, idx, n, &size, &mag);
 	double eps = 1e-12 * size * size;
 
 	while (m > 3) {

@@ -18,11 +18,6 @@
  * for a triangle it equals (v1 - v0) x (v2 - v0). */
 pm_dvec3 pm_poly_newell(const pm_vec3 *v, const uint32_t *idx, uint32_t n);
 
-/* Size measures used for relative tolerances: the longest side of the
- * bounding box, and the largest absolute coordinate. */
-void pm_poly_extent(const pm_vec3 *v, const uint32_t *idx, uint32_t n,
-	double *size, double *mag);
-
 /* 1 if the polygon has (near-)zero area: its mean width, 2 * area / size, is
  * below what float coordinates of this size and magnitude resolve. */
 int pm_poly_degenerate(const pm_vec3 *v, const uint32_t *idx, uint32_t n);

@@ -13,7 +13,7 @@
 #include "accel.h"
 #include "err.h"
 #include "light.h"
-#include "photon.h"
+#include "photonfile.h"
 #include "progress.h"
 #include "scene.h"
 

@@ -9,7 +9,7 @@
 
 #include "atomic.h"
 #include "kdtree.h"
-#include "photon.h"
+#include "photonfile.h"
 #include "options.h"
 #include "util.h"
 
@@ -29,33 +29,6 @@ static const tool build = {
 	"With no FILE, or FILE -, reads stdin.",
 	opts, NULL,
 };
-
-/* Appends seeds to the merged list; a list that would not fit ends in
- * ",..." (the command history still names every input's seed). */
-static void
-join_seeds(char *acc, size_t cap, const char *add)
-{
-	size_t n = strlen(acc), m = strlen(add);
-	char *cut;
-
-	if (m == 0)
-		return;
-	if (n >= 4 && strcmp(acc + n - 4, ",...") == 0)
-		return;
-	if (n == 0 && m < cap) {
-		memcpy(acc, add, m + 1);
-		return;
-	}
-	if (n + 1 + m < cap) {
-		acc[n] = ',';
-		memcpy(acc + n + 1, add, m + 1);
-		return;
-	}
-	while (strlen(acc) + 4 >= cap && (cut = strrchr(acc, ',')) != NULL)
-		*cut = 0;
-	if (strlen(acc) + 4 < cap)
-		strcat(acc, ",...");
-}
 
 int
 main(int argc, char **argv)
@@ -92,6 +65,7 @@ main(int argc, char **argv)
 		const char *name = in[i];
 		FILE *f = open_input(name);
 		pm_photons ph;
+		unsigned differ;
 
 		if (pm_photons_read(&ph, f, name, &err))
 			die_err(&err);
@@ -102,7 +76,8 @@ main(int argc, char **argv)
 			first = name;
 			continue;
 		}
-		if (ph.h.light_hash != acc.h.light_hash) {
+		differ = pm_photons_differ(&acc, &ph);
+		if (differ & PM_DIFFER_LIGHTS) {
 			if (!force)
 				die("%s: light_hash %016llx differs from %s (%016llx); --force merges anyway",
 				    shown_name(name, qa, sizeof qa), (unsigned long long)ph.h.light_hash,
@@ -112,7 +87,7 @@ main(int argc, char **argv)
 				     shown_name(name, qa, sizeof qa), (unsigned long long)ph.h.light_hash,
 				     shown_name(first, qb, sizeof qb));
 		}
-		if (ph.h.time != acc.h.time) {
+		if (differ & PM_DIFFER_TIME) {
 			if (!force)
 				die("%s: time %.9g differs from %s (%.9g); --force merges anyway",
 				    shown_name(name, qa, sizeof qa), ph.h.time, shown_name(first, qb, sizeof qb), acc.h.time);
@@ -120,36 +95,8 @@ main(int argc, char **argv)
 				warn("%s: time %.9g differs from %s; the map keeps %.9g",
 				     shown_name(name, qa, sizeof qa), ph.h.time, shown_name(first, qb, sizeof qb), acc.h.time);
 		}
-		if (acc.h.count + ph.h.count > UINT32_MAX)
-			die("%s: merged maps would exceed %u photons", shown_name(name, qa, sizeof qa), UINT32_MAX);
-		if (acc.h.emitted > UINT64_MAX - ph.h.emitted)
-			die("%s: merged emitted count overflows", shown_name(name, qa, sizeof qa));
-		if (ph.h.count) {
-			pm_photon *p = realloc(acc.p, (size_t)(acc.h.count + ph.h.count) * sizeof *p);
-			if (!p)
-				die("out of memory for %llu photons",
-				    (unsigned long long)(acc.h.count + ph.h.count));
-			memcpy(p + acc.h.count, ph.p, (size_t)ph.h.count * sizeof *p);
-			acc.p = p;
-		}
-		acc.h.count += ph.h.count;
-		acc.h.emitted += ph.h.emitted;
-		join_seeds(acc.h.seeds, sizeof acc.h.seeds, ph.h.seeds);
-		if (ph.h.history && *ph.h.history) {
-			if (acc.h.history && *acc.h.history) {
-				size_t a = strlen(acc.h.history), b = strlen(ph.h.history);
-				char *h = realloc(acc.h.history, a + b + 2);
-				if (!h)
-					die("out of memory");
-				h[a] = '\n';
-				memcpy(h + a + 1, ph.h.history, b + 1);
-				acc.h.history = h;
-			} else {
-				free(acc.h.history);
-				acc.h.history = ph.h.history;
-				ph.h.history = NULL;
-			}
-		}
+		if (pm_photons_merge(&acc, &ph, name, &err))
+			die_err(&err);
 		pm_photons_free(&ph);
 	}
 	if (acc.h.count == 0 && !quiet)

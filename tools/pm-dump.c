@@ -11,7 +11,7 @@
 #include "atomic.h"
 #include "image.h"
 #include "kdtree.h"
-#include "photon.h"
+#include "photonfile.h"
 #include "options.h"
 #include "util.h"
 

@@ -11,7 +11,7 @@
 #include "image.h"
 #include "pass.h"
 #include "passid.h"
-#include "photon.h"
+#include "photonfile.h"
 #include "render.h"
 #include "scene.h"
 #include "bar.h"

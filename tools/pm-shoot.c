@@ -8,7 +8,7 @@
 #include "atomic.h"
 #include "frame.h"
 #include "pass.h"
-#include "photon.h"
+#include "photonfile.h"
 #include "scene.h"
 #include "shoot.h"
 #include "bar.h"

@@ -13,7 +13,7 @@
 #include <string.h>
 
 #include "atomic.h"
-#include "photon.h"
+#include "photonfile.h"
 #include "rng.h"
 
 static const char usage[] =

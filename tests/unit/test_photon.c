@@ -9,7 +9,7 @@
 #include <unistd.h>
 
 #include "check.h"
-#include "photon.h"
+#include "photonfile.h"
 #include "rng.h"
 
 static pm_vec3
