@@ -27,8 +27,10 @@ fname(char *buf, size_t n, const char *name, int out)
 		snprintf(buf, n, "'%s'", name);
 }
 
+/* A header value as the writer prints it: plain decimal digits, nothing
+ * else (unlike the tools' option parser, which takes exponent forms). */
 static int
-parse_u64(const char *s, uint64_t *v)
+header_u64(const char *s, uint64_t *v)
 {
 	uint64_t x = 0;
 
@@ -132,7 +134,7 @@ parse_value(pm_photon_header *h, int key, const char *val, pm_error *err)
 
 	switch (key) {
 	case K_VERSION:
-		if (parse_u64(val, &u) || u == 0 || u > INT_MAX)
+		if (header_u64(val, &u) || u == 0 || u > INT_MAX)
 			return pm_seterr(err, "bad version '%.40s'", val);
 		h->version = (int)u;
 		return 0;
@@ -151,7 +153,7 @@ parse_value(pm_photon_header *h, int key, const char *val, pm_error *err)
 		h->kdtree = val[0] - '0';
 		return 0;
 	case K_COUNT:
-		if (parse_u64(val, &u))
+		if (header_u64(val, &u))
 			return pm_seterr(err, "bad count '%.40s'", val);
 		if (u > MAX_COUNT)
 			return pm_seterr(err, "count %llu exceeds the limit of %u photons",
@@ -159,7 +161,7 @@ parse_value(pm_photon_header *h, int key, const char *val, pm_error *err)
 		h->count = u;
 		return 0;
 	case K_EMITTED:
-		if (parse_u64(val, &u))
+		if (header_u64(val, &u))
 			return pm_seterr(err, "bad emitted '%.40s'", val);
 		h->emitted = u;
 		return 0;
