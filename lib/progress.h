@@ -2,7 +2,7 @@
  * printing (library code never prints): the caller passes a function that
  * libpm calls with the work done so far and the total, from one thread at a
  * time, and that must not change what the work computes. Tools turn the
- * calls into a terminal progress bar (tools/progress.h). */
+ * calls into a terminal progress bar (tools/bar.h). */
 #ifndef PM_PROGRESS_H
 #define PM_PROGRESS_H
 
