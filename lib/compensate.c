@@ -70,8 +70,7 @@ typedef struct cpoly {
 	                          those covered for every direction */
 	int ncell;             /* cells its area was shared among */
 	int unseen;            /* a solid's face turned away from x': not seen */
-	double avis;           /* area seen from x' ... */
-	double aopen;          /* ... of it, not covered by a polygon on its plane */
+	double aopen;          /* area seen from x', not covered by a polygon on its plane */
 	int ndyn;              /* samples whose fate depends on the direction */
 	double adyn;           /* ... their area seen from x' */
 } cpoly;
@@ -665,19 +664,16 @@ sample(pm_comp_scratch *sc, cpoly *P, pm_dvec3 xo, double h, double eps)
 		sc->sp[P->s0 + kept++] = pm_dscale(m, 1.0 / P->nv);
 	}
 	P->ncell = kept;
-	P->avis = P->aopen = 0;
 	P->ndyn = 0;
-	P->adyn = 0;
 	/* Only samples whose fate is not "open for every direction" cost work
 	 * per photon; they are kept, dynamic ones first. All cells weigh the
 	 * same, so areas are counts times one cell. */
 	double cell = P->A / kept;
-	int nopen = 0, nseen = 0, ncov = 0;
+	int nopen = 0, ncov = 0;
 	for (int i = P->s0; i < P->s0 + kept; i++) {
 		int f = -1;
 		if (!seen(sc, P, xo, sc->sp[i], eps))
 			continue;
-		nseen++;
 		/* Covered by a polygon on P's plane: a backward ray meets it at
 		 * once, whatever its direction. */
 		for (int b = 0; b < P->nfc && f < 0; b++) {
@@ -709,7 +705,6 @@ sample(pm_comp_scratch *sc, cpoly *P, pm_dvec3 xo, double h, double eps)
 	}
 	P->ns = P->ndyn + ncov;
 	sc->nsp += P->ns;
-	P->avis = cell * nseen;
 	P->aopen = cell * nopen;
 	P->adyn = cell * P->ndyn;
 	return 1;
@@ -834,7 +829,7 @@ pm_comp_weights(const pm_polyindex *pi, pm_vec3 x, pm_vec3 n,
 		P->de = pm_ddot(P->Ne, P->N) * P->d;
 		P->xon = fabs(P->d) <= eps && inside(sc, P, pm_dv3(0, 0, 0), eps, 1);
 		P->xpar = fabs(pm_ddot(P->N, nd)) >= 1 - PARALLEL_EPS && fabs(P->d) <= eps;
-		P->avis = P->aopen = P->A;
+		P->aopen = P->A;
 		P->unseen = 0;
 		P->convex = pm_poly_convex(sc->cv + P->v0, P->nv, P->N);
 		P->nfc = P->ndyn = 0;
@@ -845,7 +840,7 @@ pm_comp_weights(const pm_polyindex *pi, pm_vec3 x, pm_vec3 n,
 			goto out;
 		for (int a = 0; a < sc->ng; a++)
 			if (sc->g[a].unseen)
-				sc->g[a].avis = sc->g[a].aopen = 0;
+				sc->g[a].aopen = 0;
 			else if (sc->g[a].nr > 0 || sc->g[a].nf > 0) {
 				if (!sample(sc, &sc->g[a], xo, h, eps))
 					goto out;
@@ -943,7 +938,10 @@ pm_comp_weights(const pm_polyindex *pi, pm_vec3 x, pm_vec3 n,
 				hit += fate(sc, cand, nc, sc->sp[t], psi, eps) == sc->fx[j];
 			for (int t = P->s0 + P->ndyn; t < P->s0 + P->ns; t++)
 				hit += sc->sf[t] == sc->fx[j];
-			s = (sc->fx[j] < 0 ? P->aopen + (nc > 0 ? 0 : P->adyn) : 0) + hit * (P->A / P->ncell);
+			/* An unsampled polygon has no cells (ncell 0): hit is 0 there,
+			 * and 0 * (A / 0) would be NaN. */
+			s = (sc->fx[j] < 0 ? P->aopen + (nc > 0 ? 0 : P->adyn) : 0) +
+			    (hit > 0 ? hit * (P->A / P->ncell) : 0);
 			A += f * s;
 		}
 		/* The photon's own spot is exposed: never less than its cell. */
