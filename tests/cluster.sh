@@ -30,7 +30,7 @@ cluster_up() {
 	[ "$(id -u)" -eq 0 ] || { echo "cluster.sh: cannot start SLURM: needs root" >&2; return 1; }
 	trap cluster_down EXIT
 	trap 'exit 1' INT TERM
-	cluster_dir=$(mktemp -d /tmp/pm-slurm.XXXXXX) || return 1
+	cluster_dir=$(mktemp -d --suffix=.pm-slurm) || return 1
 	# munged wants every directory up to its socket open to all.
 	chmod 755 "$cluster_dir"
 	c=$cluster_dir
