@@ -52,20 +52,20 @@ add() { awk -F'\t' -v p="$1" 'NF == 2 { print p "." $1 "\t" $2 }' "$2" >>"$micro
 if [ "$mode" = quick ]; then
 	KNN_Q=160000 RUNS=3 HOT_N=200000 SHOOT_N=500000
 	SWEEP_SCENES="cornell caustic room furnace" NMAX=8 PHOTONS="100000" KS=50 KS_AT=
-	REF_PASSES=16 REF_SPP=256 SIZE_cornell="128 128" SIZE_caustic="128 128" SIZE_room="128 96"
+	REF_PASSES=16 REF_SPP=256 REF_PASSES_room=64 SIZE_cornell="128 128" SIZE_caustic="128 128" SIZE_room="128 96"
 	SIZE_furnace="64 48"
 else
 	KNN_Q=1000000 RUNS=5 HOT_N=1000000 SHOOT_N=1000000
 	SWEEP_SCENES="cornell caustic room furnace" NMAX=64 PHOTONS="100000 400000" KS="25 100" KS_AT=200000
-	REF_PASSES=32 REF_SPP=1024 SIZE_cornell="256 256" SIZE_caustic="256 256" SIZE_room="256 192"
+	REF_PASSES=32 REF_SPP=1024 REF_PASSES_room=128 SIZE_cornell="256 256" SIZE_caustic="256 256" SIZE_room="256 192"
 	SIZE_furnace="128 96"
 fi
 SPP=4 BASE_K=50
-# The speed-against-error sweep's view passes: pm-render's settings with the
-# best measured efficiency (BENCHMARKS.md, "Levers"); the path tracer, the
-# competitor, with its own best (one shadow ray per vertex; 64 camera samples
-# per pass pair).
-VIEW_ARGS="-p 32 -l 1" PATH_ARGS="-p 64 -l 1"
+# The speed-against-error sweep's view passes: pm-render's defaults, the
+# settings with the best measured efficiency (BENCHMARKS.md, "Levers"); the
+# path tracer, the competitor, with its own best (one shadow ray per vertex;
+# 64 camera samples per pass pair).
+VIEW_ARGS="-p 16 -l 4" PATH_ARGS="-p 64 -l 1"
 
 # ---- the scenes, copied with their meshes so the camera size can change --
 mkscene() { # NAME SRC_DIR SRC_FILE W H
@@ -215,13 +215,16 @@ printf 'scene\test\tphotons\tk\tpasses\ttime_s\trmse\trelmse\tmse\tpassvar\trelp
 
 # reference NAME SCENE: prints the reference image path (made once, cached by
 # the scene's bytes, its meshes' and the reference settings)
+# The room's reference takes more passes: the path tracer's noise there is
+# about 10 times the Cornell box's at equal time.
 reference() {
-	key=$(cat "$(dirname "$2")"/* | cksum | awk -v s="$REF_PASSES-$REF_SPP" '{ print $1 "-" s }')
+	eval "np=\${REF_PASSES_$1:-$REF_PASSES}"
+	key=$(cat "$(dirname "$2")"/* | cksum | awk -v s="$np-$REF_SPP" '{ print $1 "-" s }')
 	r=$cache/ref/$1-$key.exr
 	if [ ! -s "$r" ]; then
-		log "reference for $1: $REF_PASSES path-traced passes of $REF_SPP spp (cached in $cache/ref)"
+		log "reference for $1: $np path-traced passes of $REF_SPP spp (cached in $cache/ref)"
 		mkdir -p "$cache/ref" "$tmp/ref"
-		seq 1 "$REF_PASSES" | xargs -P "$jobs" -I{} "$bin/pm-render" -j 1 -e path -p "$REF_SPP" \
+		seq 1 "$np" | xargs -P "$jobs" -I{} "$bin/pm-render" -j 1 -e path -p "$REF_SPP" \
 			-s "1000{}" "$2" -o "$tmp/ref/{}.exr" 2>/dev/null
 		"$bin/pm-average" "$tmp/ref"/*.exr -o "$r.tmp.exr"
 		mv "$r.tmp.exr" "$r"
