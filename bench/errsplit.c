@@ -14,7 +14,11 @@
  * where passvar = mean s^2 (of one pass; divide by n for the mean's).
  *
  *   errsplit [-m MASK.exr -c CHANNEL|!CHANNEL] [-v VALUE] AVG.exr [REF.exr]
- *   errsplit -z CHANNEL IMG.exr     fraction of pixels whose CHANNEL > 0 */
+ *   errsplit -z CHANNEL IMG.exr     fraction of pixels whose CHANNEL > 0
+ *   errsplit -s Z [-m MASK.exr -c [!]CHANNEL] AVG.exr REF.exr
+ *       pixels (in the mask) where some channel is more than Z standard
+ *       errors from the reference, |a - b| / sqrt(se_a^2 + se_b^2), se from
+ *       each average's stderr layer: speckles, or a bias beyond the noise */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -41,8 +45,11 @@ main(int argc, char **argv)
 	pm_image a, b, m;
 	pm_error err;
 
-	while ((c = getopt(argc, argv, "c:m:v:z:")) != -1) {
+	double zmax = NAN;
+
+	while ((c = getopt(argc, argv, "c:m:s:v:z:")) != -1) {
 		switch (c) {
+		case 's': zmax = atof(optarg); break;
 		case 'c': maskc = optarg; break;
 		case 'm': maskf = optarg; break;
 		case 'v': cval = atof(optarg); break;
@@ -121,6 +128,29 @@ main(int argc, char **argv)
 			die("errsplit", "out of memory");
 		for (size_t i = 0; i < np; i++)
 			mask[i] = (mc[i] > 0.5f) != neg ? 1.0f : 0.0f;
+	}
+	if (!isnan(zmax)) {
+		const float *ase[3];
+		long long over = 0;
+		for (int k = 0; k < 3; k++) {
+			char nm[16];
+			snprintf(nm, sizeof nm, "stderr.%s", rgb[k]);
+			if (!(ase[k] = pm_image_chan(&a, nm)) || !bse[k])
+				die(af, "-s needs both images' stderr layers (averages of passes)");
+		}
+		for (size_t i = 0; i < np; i++) {
+			int hit = 0;
+			if (mask && !(mask[i] > 0.5f))
+				continue;
+			for (int k = 0; k < 3; k++) {
+				double s = sqrt((double)ase[k][i] * ase[k][i] + (double)bse[k][i] * bse[k][i]);
+				double dd = fabs((double)pa[k][i] - pb[k][i]);
+				hit |= s > 0 ? dd > zmax * s : dd > 0;
+			}
+			over += hit;
+		}
+		printf("%lld\n", over);
+		return 0;
 	}
 	pm_diff d;
 	if (pm_compare(pa, pb, mask, w, h, &d, &err)) {

@@ -326,6 +326,26 @@ lever() {
 		-v n="$LEVER_N" -v t="$t" '{ r = $4 - $8; if (r < 1e-9) r = 1e-9; print sc, l, p, a, n, t, r, 1 / (r * t) }' >>"$levers"
 	rm -rf "$d"
 }
+# ---- speckles: the room's 50-pair average against its reference ------------
+# Pixels more than 5 standard errors (both averages' stderr) from the
+# reference, in the edge band and away from it: speckles show as isolated
+# pixels away from edges; a bias beyond the noise as runs along the edges.
+log "speckles: 50 pass pairs of the room (200000 photons)"
+sc=$(scene_of room)
+ref=$(reference room "$sc")
+d=$tmp/sp
+mkdir -p "$d"
+seq 1 50 | xargs -P "$jobs" -I{} sh -c '"$1/pm-shoot" -q -j 1 -n 200000 -P {}/50 "$2" |
+	"$1/pm-build" -q -j 1 | "$1/pm-render" -q -j 1 -P {}/50 "$2" - -o "$3/p{}.exr"' sh "$bin" "$sc" "$d"
+"$bin/pm-average" -q "$d"/p*.exr -o "$d/avg.exr"
+{
+	printf 'speckle.pixels\t%s\n' "$(awk -v s="$SIZE_room" 'BEGIN { split(s, a, " "); print a[1] * a[2] }')"
+	printf 'speckle.over5_edge\t%s\n' "$("$bb/errsplit" -s 5 -m "$d/avg.exr" -c edge "$d/avg.exr" "$ref")"
+	printf 'speckle.over5_rest\t%s\n' "$("$bb/errsplit" -s 5 -m "$d/avg.exr" -c '!edge' "$d/avg.exr" "$ref")"
+	printf 'speckle.edge_fraction\t%s\n' "$("$bb/errsplit" -z edge "$d/avg.exr")"
+} >>"$micro"
+rm -rf "$d"
+
 lever cornell "path tracer, 1 shadow ray per vertex" 0 "-p 64 -l 1"
 lever cornell "path tracer, 4 shadow rays at the first vertex" 0 "-p 64 -l 4"
 lever cornell "pm 0.13's view pass: -p 4, 1 shadow ray, an estimate per sample" 100000 "-p 4 -l 1 --estimates sample"
