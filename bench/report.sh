@@ -373,5 +373,12 @@ k, passes, time, RMSE, relMSE, MSE, pass variance, relative pass variance,
 reference variance, relative reference variance, the same in the edge band,
 pixels counted).
 EOF
+# Sections measured by their own scripts (bench/*.sh besides run.sh), kept
+# by hand in bench/sections/ and carried over from run to run.
+for f in "$(dirname "$0")"/sections/*.md; do
+	[ -f "$f" ] || continue
+	echo
+	cat "$f"
+done
 } >"$doc.tmp"
 mv "$doc.tmp" "$doc"
