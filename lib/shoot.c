@@ -12,36 +12,42 @@
 #define BATCH 64            /* work items per round */
 #define SHOOT_DOMAIN 0x5348004f4f54ull
 
-typedef struct chunk {
+/* The photons of one chunk's paths, in path order, for one map. */
+typedef struct stash {
 	pm_photon *p;
 	size_t n, cap;
 	uint32_t count[CHUNK];  /* photons stored by each path of the chunk */
+} stash;
+
+typedef struct chunk {
+	stash glob, caus;
 	int oom;
 } chunk;
 
 static void
-push(chunk *c, const pm_photon *ph)
+push(chunk *c, stash *st, const pm_photon *ph)
 {
-	if (c->n == c->cap) {
-		size_t cap = c->cap ? 2 * c->cap : 256;
-		pm_photon *p = realloc(c->p, cap * sizeof *p);
+	if (st->n == st->cap) {
+		size_t cap = st->cap ? 2 * st->cap : 256;
+		pm_photon *p = realloc(st->p, cap * sizeof *p);
 		if (!p) {
 			c->oom = 1;
 			return;
 		}
-		c->p = p;
-		c->cap = cap;
+		st->p = p;
+		st->cap = cap;
 	}
-	c->p[c->n++] = *ph;
+	st->p[st->n++] = *ph;
 }
 
 static void
 trace_path(const pm_scene *s, const pm_accel *a, const pm_lights *L, const pm_shoot_opts *o,
-           uint64_t idx, chunk *c, uint32_t *count)
+           uint64_t idx, chunk *c, int j)
 {
 	pm_rng r = pm_rng_seed(o->seed ^ SHOOT_DOMAIN, idx);
 	pm_vec3 org, d, n, power;
 	int maxb = o->max_bounces > 0 ? o->max_bounces : 256;
+	int specular_only = 1;  /* every hit so far strong: the path is L S* */
 	pm_hit h;
 
 	pm_lights_emit(L, &r, &org, &d, &n, &power);
@@ -60,9 +66,15 @@ trace_path(const pm_scene *s, const pm_accel *a, const pm_lights *L, const pm_sh
 			pm_photon ph;
 			pm_vec3 ns = pm_dot(h.ng, wo) >= 0 ? h.ng : pm_neg(h.ng);
 			pm_photon_pack(&ph, h.p, wo, ns, power);
-			push(c, &ph);
-			(*count)++;
+			push(c, &c->glob, &ph);
+			c->glob.count[j]++;
+			if (specular_only && o->caustic) {
+				push(c, &c->caus, &ph);
+				c->caus.count[j]++;
+			}
 		}
+		if (pm_mat_is_photon_surface(m))
+			specular_only = 0;
 		if (pm_bsdf_sample(m, h.ng, wo, &r, &sc) != 0)
 			return;
 		q = fminf(1.0f, pm_maxc(sc.weight));
@@ -81,39 +93,61 @@ pm_shoot(const pm_scene *s, const pm_accel *a, const pm_lights *L,
 	uint64_t want = o->nphotons, emitted = 0, stored = 0;
 	uint64_t maxp = o->max_paths ? o->max_paths : 64 * want + (1u << 20);
 	chunk *ch = calloc(BATCH, sizeof *ch);
-	pm_photon *all = NULL;
+	pm_photon *all = NULL, *caus = NULL;
+	size_t ncaus = 0, capcaus = 0;
 	int done = 0, oom = 0;
 
 	memset(out, 0, sizeof *out);
+	if (o->caustic)
+		memset(o->caustic, 0, sizeof *o->caustic);
 	if (!ch)
 		return pm_seterr(err, "out of memory");
 	if (want > 0 && !(all = malloc(want * sizeof *all))) {
 		free(ch);
 		return pm_seterr(err, "out of memory for %llu photons", (unsigned long long)want);
 	}
-	while (!done && stored < want && emitted < maxp) {
+	while (!done && !oom && stored < want && emitted < maxp) {
 		uint64_t base = emitted;
 		#pragma omp parallel for schedule(dynamic, 1)
 		for (int ci = 0; ci < BATCH; ci++) {
 			chunk *c = &ch[ci];
-			c->n = 0;
-			memset(c->count, 0, sizeof c->count);
+			c->glob.n = c->caus.n = 0;
+			memset(c->glob.count, 0, sizeof c->glob.count);
+			memset(c->caus.count, 0, sizeof c->caus.count);
 			for (int j = 0; j < CHUNK; j++)
-				trace_path(s, a, L, o, base + (uint64_t)ci * CHUNK + j, c, &c->count[j]);
+				trace_path(s, a, L, o, base + (uint64_t)ci * CHUNK + j, c, j);
 		}
 		/* Keep paths in index order until the n-th photon is stored. */
 		for (int ci = 0; ci < BATCH && !done; ci++) {
 			chunk *c = &ch[ci];
-			size_t at = 0;
+			size_t at = 0, cat = 0;
 			oom |= c->oom;
-			for (int j = 0; j < CHUNK && !done; j++) {
-				uint64_t take = c->count[j];
+			for (int j = 0; j < CHUNK && !done && !oom; j++) {
+				uint64_t take = c->glob.count[j];
 				emitted++;
 				if (take > want - stored)
 					take = want - stored;
-				memcpy(all + stored, c->p + at, take * sizeof *all);
+				memcpy(all + stored, c->glob.p + at, take * sizeof *all);
 				stored += take;
-				at += c->count[j];
+				at += c->glob.count[j];
+				if (c->caus.count[j] > 0) {
+					size_t add = c->caus.count[j];
+					if (ncaus + add > capcaus) {
+						size_t cap = capcaus ? 2 * capcaus : 4096;
+						while (cap < ncaus + add)
+							cap *= 2;
+						pm_photon *p = realloc(caus, cap * sizeof *p);
+						if (!p) {
+							oom = 1;
+							break;
+						}
+						caus = p;
+						capcaus = cap;
+					}
+					memcpy(caus + ncaus, c->caus.p + cat, add * sizeof *caus);
+					ncaus += add;
+					cat += add;
+				}
 				if (stored >= want || emitted >= maxp)
 					done = 1;
 			}
@@ -121,20 +155,30 @@ pm_shoot(const pm_scene *s, const pm_accel *a, const pm_lights *L,
 		if (o->progress)
 			o->progress(o->progress_arg, stored, want);
 	}
-	for (int ci = 0; ci < BATCH; ci++)
-		free(ch[ci].p);
+	for (int ci = 0; ci < BATCH; ci++) {
+		free(ch[ci].glob.p);
+		free(ch[ci].caus.p);
+	}
 	free(ch);
 	if (oom) {
 		free(all);
+		free(caus);
 		return pm_seterr(err, "out of memory while shooting photons");
 	}
 	out->p = all;
-	out->h.version = PM_PHOTONS_VERSION;
+	out->h.version = 1;
 	out->h.kdtree = 0;
 	out->h.count = stored;
 	out->h.emitted = emitted;
 	out->h.light_hash = s->light_hash;
 	out->h.time = o->time;
 	snprintf(out->h.seeds, sizeof out->h.seeds, "%llu", (unsigned long long)o->seed);
+	if (o->caustic) {
+		o->caustic->h = out->h;
+		o->caustic->h.map = PM_MAP_CAUSTIC;
+		o->caustic->h.version = 2;
+		o->caustic->h.count = ncaus;
+		o->caustic->p = caus;
+	}
 	return 0;
 }
