@@ -40,6 +40,7 @@ typedef struct ctx {
 	const pm_render_opts *o;
 	const pm_estimator *est;
 	pm_est_in in;
+	pm_gather gather;   /* used if o->gather */
 } ctx;
 
 /* Power heuristic (Veach 1997, §9.2.4) for two strategies, one sample each. */
@@ -142,7 +143,8 @@ trace(const ctx *c, void *sc, pm_vec3 o, pm_vec3 d, pm_rng *r, sample *out)
 			                               bs.wi, 0.0f, FLT_MAX, &lh))
 				*here = pm_add(*here, pm_mul(pm_mul(beta, bs.weight),
 				                             emitted_mis(c, &lh, h.p, bs.wi, bs.pdf, 0)));
-			L = c->est->estimate(&c->in, sc, h.p, n, wo, m, &info);
+			L = c->o->gather ? pm_gather_radiance(&c->gather, sc, r, h.p, h.ng, n, wo, m, &info)
+			                 : c->est->estimate(&c->in, sc, h.p, n, wo, m, &info);
 			*bucket = pm_add(*bucket, pm_mul(beta, L));
 			if (depth == 0) {
 				out->size = info.size;
@@ -182,7 +184,7 @@ pm_render(const pm_frame *f, const pm_photons *map, const pm_render_opts *o,
 	const pm_scene *s = f->s;
 	const pm_estimator *est = o->estimator;
 	ctx c = {s, f->accel, &f->lights, o, est,
-	         {s, f->accel, map, f->pi, o->k, o->classical_norm}};
+	         {s, f->accel, map, f->pi, o->k, o->classical_norm}, {0}};
 	pm_camera cam;
 	int W, H, fail = 0;
 	size_t npx;
@@ -193,6 +195,10 @@ pm_render(const pm_frame *f, const pm_photons *map, const pm_render_opts *o,
 		return pm_seterr(err, "the %s estimate needs a polygon index", est->name);
 	if (o->classical_norm != PM_NORM_K && o->classical_norm != PM_NORM_K1)
 		return pm_seterr(err, "unknown classical normalisation %d", o->classical_norm);
+	if (o->gather && !est->estimate)
+		return pm_seterr(err, "gathering needs an estimate, not %s", est->name);
+	if (o->gather)
+		pm_gather_init(&c.gather, f, est, &c.in, o->gather);
 	if (pm_camera_init(&cam, &s->camera, err) != 0)
 		return pm_preferr(err, "%s", s->path);
 	W = cam.width;

@@ -86,16 +86,49 @@ trace_path(const pm_scene *s, const pm_accel *a, const pm_lights *L, const pm_sh
 	}
 }
 
+/* Appends n photons to a growing array; 0, or -1 out of memory. */
+static int
+append(pm_photon **arr, size_t *len, size_t *cap, const pm_photon *p, size_t n)
+{
+	if (*len + n > *cap) {
+		size_t c = *cap ? 2 * *cap : 4096;
+		pm_photon *q;
+		while (c < *len + n)
+			c *= 2;
+		if (!(q = realloc(*arr, c * sizeof *q)))
+			return -1;
+		*arr = q;
+		*cap = c;
+	}
+	memcpy(*arr + *len, p, n * sizeof *p);
+	*len += n;
+	return 0;
+}
+
+/* 1 if some material continues paths (mirror, glass, strong glossy): without
+ * one there are no caustic photons to wait for. */
+static int
+has_strong(const pm_scene *s)
+{
+	for (int i = 0; i < s->nmats; i++)
+		if (!pm_mat_is_photon_surface(&s->mats[i]))
+			return 1;
+	return 0;
+}
+
 int
 pm_shoot(const pm_scene *s, const pm_accel *a, const pm_lights *L,
          const pm_shoot_opts *o, pm_photons *out, pm_error *err)
 {
-	uint64_t want = o->nphotons, emitted = 0, stored = 0;
-	uint64_t maxp = o->max_paths ? o->max_paths : 64 * want + (1u << 20);
+	uint64_t want = o->nphotons, cwant = o->ncaustic, emitted = 0, cemitted = 0, next = 0;
+	uint64_t most = want > cwant ? want : cwant;
+	uint64_t maxp = o->max_paths ? o->max_paths : 64 * most + (1u << 20);
 	chunk *ch = calloc(BATCH, sizeof *ch);
 	pm_photon *all = NULL, *caus = NULL;
-	size_t ncaus = 0, capcaus = 0;
-	int done = 0, oom = 0;
+	size_t stored = 0, ncaus = 0, capcaus = 0, cap = 0;
+	/* Each map is done after the path that stores its last photon; a
+	 * caustic map without a count of its own takes the global map's paths. */
+	int gdone = want == 0, cdone = !o->caustic || (cwant > 0 && !has_strong(s)), oom = 0;
 
 	memset(out, 0, sizeof *out);
 	if (o->caustic)
@@ -106,8 +139,11 @@ pm_shoot(const pm_scene *s, const pm_accel *a, const pm_lights *L,
 		free(ch);
 		return pm_seterr(err, "out of memory for %llu photons", (unsigned long long)want);
 	}
-	while (!done && !oom && stored < want && emitted < maxp) {
-		uint64_t base = emitted;
+	cap = want;
+	if (o->caustic && cwant == 0)
+		cdone = gdone;
+	while (!(gdone && cdone) && !oom && next < maxp) {
+		uint64_t base = next;
 		#pragma omp parallel for schedule(dynamic, 1)
 		for (int ci = 0; ci < BATCH; ci++) {
 			chunk *c = &ch[ci];
@@ -117,39 +153,33 @@ pm_shoot(const pm_scene *s, const pm_accel *a, const pm_lights *L,
 			for (int j = 0; j < CHUNK; j++)
 				trace_path(s, a, L, o, base + (uint64_t)ci * CHUNK + j, c, j);
 		}
-		/* Keep paths in index order until the n-th photon is stored. */
-		for (int ci = 0; ci < BATCH && !done; ci++) {
+		/* Keep paths in index order until each map's last photon is stored. */
+		for (int ci = 0; ci < BATCH && !(gdone && cdone) && !oom; ci++) {
 			chunk *c = &ch[ci];
 			size_t at = 0, cat = 0;
 			oom |= c->oom;
-			for (int j = 0; j < CHUNK && !done && !oom; j++) {
-				uint64_t take = c->glob.count[j];
-				emitted++;
-				if (take > want - stored)
-					take = want - stored;
-				memcpy(all + stored, c->glob.p + at, take * sizeof *all);
-				stored += take;
-				at += c->glob.count[j];
-				if (c->caus.count[j] > 0) {
-					size_t add = c->caus.count[j];
-					if (ncaus + add > capcaus) {
-						size_t cap = capcaus ? 2 * capcaus : 4096;
-						while (cap < ncaus + add)
-							cap *= 2;
-						pm_photon *p = realloc(caus, cap * sizeof *p);
-						if (!p) {
-							oom = 1;
-							break;
-						}
-						caus = p;
-						capcaus = cap;
-					}
-					memcpy(caus + ncaus, c->caus.p + cat, add * sizeof *caus);
-					ncaus += add;
-					cat += add;
+			for (int j = 0; j < CHUNK && !(gdone && cdone) && !oom; j++) {
+				uint64_t take = c->glob.count[j], ctake = c->caus.count[j];
+				int shared = cwant == 0 && !gdone;   /* a path of both maps */
+				next++;
+				if (!gdone) {
+					emitted++;
+					if (take > want - stored)
+						take = want - stored;
+					oom |= append(&all, &stored, &cap, c->glob.p + at, take);
+					if (stored >= want || emitted >= maxp)
+						gdone = 1;
 				}
-				if (stored >= want || emitted >= maxp)
-					done = 1;
+				if (!cdone) {
+					cemitted++;
+					if (cwant > 0 && ctake > cwant - ncaus)
+						ctake = cwant - ncaus;
+					oom |= append(&caus, &ncaus, &capcaus, c->caus.p + cat, ctake);
+					if (shared ? gdone : ncaus >= cwant || cemitted >= maxp)
+						cdone = 1;
+				}
+				at += c->glob.count[j];
+				cat += c->caus.count[j];
 			}
 		}
 		if (o->progress)
@@ -178,6 +208,7 @@ pm_shoot(const pm_scene *s, const pm_accel *a, const pm_lights *L,
 		o->caustic->h.map = PM_MAP_CAUSTIC;
 		o->caustic->h.version = 2;
 		o->caustic->h.count = ncaus;
+		o->caustic->h.emitted = cwant == 0 ? emitted : cemitted;
 		o->caustic->p = caus;
 	}
 	return 0;

@@ -39,7 +39,7 @@ static const tool average = {
 /* Attributes copied to the output when every input has the same value (or
  * every input lacks it). */
 static const char *const agreed[] = {
-	"pm.scene_hash", "pm.estimator", "pm.k", "pm.spp", "pm.photons", "pm.time",
+	"pm.scene_hash", "pm.estimator", "pm.k", "pm.spp", "pm.photons", "pm.time", "pm.gather",
 };
 enum { NAGREED = sizeof agreed / sizeof agreed[0] };
 

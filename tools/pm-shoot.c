@@ -17,9 +17,9 @@
 
 static const char usage[] =
 	"pm-shoot SCENE [-n PHOTONS] [-P I/N] [-s SEED] [-t TIME] [-j THREADS] [-o FILE|-] "
-	"[--caustic CFILE] [-q]";
+	"[--caustic CFILE [--caustic-photons N]] [-q]";
 
-enum { MAX_PHOTONS = OPT_LONG, CAUSTIC };
+enum { MAX_PHOTONS = OPT_LONG, CAUSTIC, CAUSTIC_PHOTONS };
 
 static const opt opts[] = {
 	{ 'n', "photons", "PHOTONS", "photons to store, 1e6 or 2.5e5 allowed", "200000", 0 },
@@ -29,6 +29,9 @@ static const opt opts[] = {
 	  "(those that reached a diffuse surface through mirrors, glass and strong glossy "
 	  "surfaces only) to CFILE, a photon file with map=caustic; they stay in FILE too",
 	  "none", 0 },
+	{ CAUSTIC_PHOTONS, "caustic-photons", "N", "with --caustic, go on shooting until "
+	  "CFILE holds N photons (it then counts its own emitted paths); caustics are "
+	  "sharp and take many photons", "0: those of FILE's paths", 0 },
 	{ 'P', "pass", "I/N", "pass I of N: seed and time derived from I and N (see pm-shoot(1)); "
 	  "-s and -t, if given, override them", "no pass", 0 },
 	{ 'q', "quiet", NULL, "quiet: no warnings, no progress bar", NULL, 1 },
@@ -68,6 +71,7 @@ main(int argc, char **argv)
 		case 'n': o.nphotons = (uint64_t)parse_int(optarg, 0, 4000000000LL, "-n", usage); break;
 		case 'o': out = optarg; break;
 		case CAUSTIC: cout = optarg; break;
+		case CAUSTIC_PHOTONS: o.ncaustic = (uint64_t)parse_int(optarg, 0, 4000000000LL, "--caustic-photons", usage); break;
 		case 'P':
 			if (pm_pass_parse(optarg, &pass_i, &pass_n, &err) != 0)
 				usage_err(usage, "-P: %s", err.msg);
@@ -83,6 +87,11 @@ main(int argc, char **argv)
 		usage_err(usage, "-n: %llu is more than %llu photons (a typo? --max-photons raises the limit)",
 		          (unsigned long long)o.nphotons, (unsigned long long)max_photons);
 	check_output(usage, out, OUT_PHOTONS, argv + optind, 1);
+	if (o.ncaustic > 0 && !cout)
+		usage_err(usage, "--caustic-photons needs --caustic CFILE");
+	if (o.ncaustic > max_photons)
+		usage_err(usage, "--caustic-photons: %llu is more than %llu photons (a typo? --max-photons raises the limit)",
+		          (unsigned long long)o.ncaustic, (unsigned long long)max_photons);
 	if (cout) {
 		check_output(usage, cout, OUT_PHOTONS, argv + optind, 1);
 		if (strcmp(cout, "-") == 0 || strcmp(cout, out) == 0)

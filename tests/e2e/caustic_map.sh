@@ -62,6 +62,22 @@ for f in c1 c3 g1 g; do pm-dump --tsv $f.pm >$f.tsv; done
 check "caustic map independent of -j" cmp -s c1.tsv c3.tsv
 check "global map unchanged by --caustic" cmp -s g1.tsv g.tsv
 
+# --caustic-photons: the caustic map goes on to N photons, counts its own
+# paths, and begins with the photons it had without the option.
+pm-shoot -q -n 50000 -s 2 glass.pms --caustic cn.pm --caustic-photons 5000 -o gn.pm
+pm-dump --stats cn.pm >cn.txt
+check "--caustic-photons 5000 stores 5000" test "$(kv cn.txt photons)" = 5000
+check "--caustic-photons: more paths emitted" test "$(kv cn.txt emitted)" -gt "$(kv c.txt emitted)"
+pm-dump --tsv c.pm | cut -f 1-6 >c6.tsv
+pm-dump --tsv cn.pm | head -n "$(wc -l <c6.tsv)" | cut -f 1-6 >cn6.tsv
+check "--caustic-photons: the same first photons" cmp -s c6.tsv cn6.tsv
+pm-dump --tsv gn.pm >gn.tsv
+check "--caustic-photons leaves the global map alone" cmp -s gn.tsv g.tsv
+pm-shoot -q -n 20000 -s 3 "$PM_TOP/examples/cornell/cornell.pms" --caustic en.pm --caustic-photons 1000000 -o en_g.pm
+pm-dump --stats en.pm >en.txt
+check "no specular surface: --caustic-photons stops at once, empty" test "$(kv en.txt photons)" = 0
+expect_fail "--caustic-photons needs --caustic" 2 "^pm-shoot: --caustic-photons needs --caustic CFILE$" pm-shoot --caustic-photons 10 glass.pms -o z.pm
+
 # pm-build keeps the tag and refuses to mix the two kinds, even forced.
 pm-build -q c.pm -o cm.pm
 pm-dump --stats cm.pm >cm.txt
