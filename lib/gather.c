@@ -46,8 +46,9 @@ direct_at(const pm_gather *g, const pm_hit *y, pm_vec3 n, pm_vec3 wo, const pm_m
 	    (cosy = pm_dot(wi, n)) > 0 && pm_maxc(f = pm_bsdf_eval(m, n, wi, wo)) > 0) {
 		pm_vec3 o = pm_accel_offset(g->a, y->p, y->ng, wi), lp = pm_add(y->p, pm_scale(wi, dist));
 		float far = pm_len(pm_sub(lp, o)) - 2.0f * pm_accel_eps(g->a, lp);
+		float w = lpdf > 0 ? power_weight(lpdf, pm_bsdf_pdf(m, n, wi, wo)) : 1.0f;
 		if (!(far > 0 && pm_accel_occluded(g->a, o, wi, 0.0f, far)))
-			sum = pm_scale(pm_mul(f, li), cosy * (lpdf > 0 ? power_weight(lpdf, pm_bsdf_pdf(m, n, wi, wo)) : 1.0f));
+			sum = pm_scale(pm_mul(f, li), cosy * w);
 	}
 	if (pm_bsdf_sample(m, y->ng, wo, r, &bs) == 0 && bs.pdf > 0 &&
 	    pm_accel_hit(g->a, pm_accel_offset(g->a, y->p, y->ng, bs.wi), bs.wi, 0.0f, FLT_MAX, &e)) {

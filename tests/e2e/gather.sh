@@ -105,4 +105,7 @@ expect_fail "--guided needs -g" 2 "^pm-render: --guided steers gather rays: give
 expect_fail "--caustic needs -g" 2 "^pm-render: --caustic is shown only when gathering (-g RAYS)$" pm-render --caustic cm.pm glass.pms gm.pm -o x.exr
 expect_fail "a global map is no caustic map" 1 "^pm-render: 'gm.pm': a global map where the caustic map belongs" pm-render -g 4 glass.pms gm.pm --caustic gm.pm -o x.exr
 expect_fail "a caustic map is no global map" 1 "^pm-render: 'cm.pm': a caustic map where the global map belongs: give it as --caustic$" pm-render -g 4 glass.pms cm.pm -o x.exr
+pm-shoot -q -n 2000 -t 0.5 glass.pms --caustic ct.pm -o /dev/null
+pm-build -q ct.pm -o ctm.pm
+expect_fail "a caustic map of another time" 1 "^pm-render: 'ctm.pm': caustic map of another scene or time than 'gm.pm'; --force to use it$" pm-render -g 4 glass.pms gm.pm --caustic ctm.pm -o x.exr
 check "refusals wrote nothing" test ! -e x.exr
