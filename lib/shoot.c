@@ -86,10 +86,13 @@ trace_path(const pm_scene *s, const pm_accel *a, const pm_lights *L, const pm_sh
 	}
 }
 
-/* Appends n photons to a growing array; 0, or -1 out of memory. */
+/* Appends photons from[at .. at+n-1] to a growing array; 0, or -1 out of
+ * memory. */
 static int
-append(pm_photon **arr, size_t *len, size_t *cap, const pm_photon *p, size_t n)
+append(pm_photon **arr, size_t *len, size_t *cap, const pm_photon *from, size_t at, size_t n)
 {
+	if (n == 0)         /* arr and from may still be NULL */
+		return 0;
 	if (*len + n > *cap) {
 		size_t c = *cap ? 2 * *cap : 4096;
 		pm_photon *q;
@@ -100,7 +103,7 @@ append(pm_photon **arr, size_t *len, size_t *cap, const pm_photon *p, size_t n)
 		*arr = q;
 		*cap = c;
 	}
-	memcpy(*arr + *len, p, n * sizeof *p);
+	memcpy(*arr + *len, from + at, n * sizeof *from);
 	*len += n;
 	return 0;
 }
@@ -166,7 +169,7 @@ pm_shoot(const pm_scene *s, const pm_accel *a, const pm_lights *L,
 					emitted++;
 					if (take > want - stored)
 						take = want - stored;
-					oom |= append(&all, &stored, &cap, c->glob.p + at, take);
+					oom |= append(&all, &stored, &cap, c->glob.p, at, take);
 					if (stored >= want || emitted >= maxp)
 						gdone = 1;
 				}
@@ -174,7 +177,7 @@ pm_shoot(const pm_scene *s, const pm_accel *a, const pm_lights *L,
 					cemitted++;
 					if (cwant > 0 && ctake > cwant - ncaus)
 						ctake = cwant - ncaus;
-					oom |= append(&caus, &ncaus, &capcaus, c->caus.p + cat, ctake);
+					oom |= append(&caus, &ncaus, &capcaus, c->caus.p, cat, ctake);
 					if (shared ? gdone : ncaus >= cwant || cemitted >= maxp)
 						cdone = 1;
 				}
