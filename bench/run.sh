@@ -35,7 +35,8 @@ for p in knn hot errsplit peakrss; do
 done
 command -v gnuplot >/dev/null || { echo "bench: gnuplot missing: sh mk/deps.sh bench" >&2; exit 1; }
 mkdir -p "$cache" "$res"
-rm -f "$res"/*.png "$res"/*.tsv
+# only this script's own results: bench/*.sh besides it write theirs here too
+rm -f "$res"/err-*.png "$res"/edge-*.png "$res"/split-*.png "$res"/runs.tsv "$res"/micro.tsv "$res"/levers.tsv
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 log() { echo "bench: $*" >&2; }

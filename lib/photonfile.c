@@ -103,11 +103,17 @@ getline_bounded(FILE *f, char *buf, size_t *total)
 }
 
 enum { K_VERSION, K_ENDIAN, K_RECSIZE, K_KDTREE, K_COUNT, K_EMITTED, K_BBOX,
-       K_HASH, K_TIME, K_SEEDS, K_COMMAND, K_PM_VERSION, K_N };
+       K_HASH, K_TIME, K_SEEDS, K_COMMAND, K_PM_VERSION, K_MAP, K_N };
 static const char *const keynames[K_N] = {
 	"version", "endian", "record_size", "kdtree", "count", "emitted", "bbox",
-	"light_hash", "time", "seeds", "command", "pm_version",
+	"light_hash", "time", "seeds", "command", "pm_version", "map",
 };
+
+const char *
+pm_map_name(int map)
+{
+	return map == PM_MAP_CAUSTIC ? "caustic" : "global";
+}
 
 static int
 add_history(char **hist, const char *line)
@@ -199,6 +205,14 @@ parse_value(pm_photon_header *h, int key, const char *val, pm_error *err)
 		if (!seeds_ok(val))
 			return pm_seterr(err, "bad seeds '%.40s' (want numbers separated by commas, under 256 characters)", val);
 		snprintf(h->seeds, sizeof h->seeds, "%s", val);
+		return 0;
+	case K_MAP:
+		if (strcmp(val, "global") == 0)
+			h->map = PM_MAP_GLOBAL;
+		else if (strcmp(val, "caustic") == 0)
+			h->map = PM_MAP_CAUSTIC;
+		else
+			return pm_seterr(err, "bad map '%.40s' (want global or caustic)", val);
 		return 0;
 	case K_PM_VERSION:
 		/* Which pm wrote the file, for people: nothing depends on it. */
@@ -333,7 +347,7 @@ read_header(pm_photons *out, FILE *f, const char *name, char **raw, pm_error *er
 		goto fail;
 	}
 	for (int k = 0; k < K_N; k++)
-		if (!seen[k] && k != K_COMMAND && k != K_PM_VERSION) {
+		if (!seen[k] && k != K_COMMAND && k != K_PM_VERSION && k != K_MAP) {
 			pm_seterr(err, "%s: missing key '%s'", fn, keynames[k]);
 			goto fail;
 		}
@@ -480,6 +494,8 @@ check_for_write(const pm_photons *ph, const char *fn, float bbox[6], size_t *hle
 		return pm_seterr(err, "%s: time is not finite", fn);
 	if (h->kdtree != 0 && h->kdtree != 1)
 		return pm_seterr(err, "%s: kdtree must be 0 or 1", fn);
+	if (h->map != PM_MAP_GLOBAL && h->map != PM_MAP_CAUSTIC)
+		return pm_seterr(err, "%s: unknown map kind %d", fn, h->map);
 	if (!seeds_ok(h->seeds))
 		return pm_seterr(err, "%s: bad seeds '%.40s'", fn, h->seeds);
 	for (s = h->history; s && *s;) {
@@ -542,10 +558,12 @@ pm_photons_write(const pm_photons *ph, FILE *f, const char *name, pm_error *err)
 	fprintf(f, "PM-PHOTONS\nversion=%d\nendian=little\nrecord_size=%d\nkdtree=%d\n"
 	        "count=%llu\nemitted=%llu\nbbox=%.9g %.9g %.9g %.9g %.9g %.9g\n"
 	        "light_hash=%016llx\ntime=%.17g\nseeds=%s\npm_version=%s\n",
-	        PM_PHOTONS_VERSION, PM_PHOTON_BYTES, h->kdtree,
+	        h->map == PM_MAP_CAUSTIC ? 2 : 1, PM_PHOTON_BYTES, h->kdtree,
 	        (unsigned long long)h->count, (unsigned long long)h->emitted,
 	        bb[0], bb[1], bb[2], bb[3], bb[4], bb[5],
 	        (unsigned long long)h->light_hash, h->time, h->seeds, PM_VERSION);
+	if (h->map == PM_MAP_CAUSTIC)
+		fputs("map=caustic\n", f);
 	for (s = h->history; s && *s;) {
 		size_t n = strcspn(s, "\n");
 		fprintf(f, "command=%.*s\n", (int)n, s);
@@ -590,7 +608,8 @@ unsigned
 pm_photons_differ(const pm_photons *a, const pm_photons *b)
 {
 	return (b->h.light_hash != a->h.light_hash ? PM_DIFFER_LIGHTS : 0) |
-	       (b->h.time != a->h.time ? PM_DIFFER_TIME : 0);
+	       (b->h.time != a->h.time ? PM_DIFFER_TIME : 0) |
+	       (b->h.map != a->h.map ? PM_DIFFER_MAP : 0);
 }
 
 /* Appends seeds to the merged list; a list that would not fit ends in

@@ -11,7 +11,11 @@
 #include "err.h"
 #include "photon.h"
 
-#define PM_PHOTONS_VERSION 1
+/* The newest version this pm reads. It writes version 1 for global maps, so
+ * older readers still take them, and version 2 (which adds the map key) for
+ * caustic maps, so older readers refuse them instead of taking them for
+ * global ones. */
+#define PM_PHOTONS_VERSION 2
 /* The first bytes of every photon file. */
 #define PM_PHOTONS_MAGIC "PM-PHOTONS\n"
 
@@ -25,7 +29,17 @@ typedef struct pm_photon_header {
 	double time;          /* shutter time of the light pass */
 	char seeds[256];      /* "7", or "1,2,3" after merging */
 	char *history;        /* producing command lines, '\n' separated; owned */
+	int map;              /* enum pm_map_kind: which photons the file holds */
 } pm_photon_header;
+
+/* Which photons a file holds (the header's map key): every photon stored
+ * after the first bounce (global), or only those whose path from the light
+ * went through mirrors, glass and strong glossy surfaces alone before the
+ * diffuse hit, L S+ D (caustic, Jensen 1996). */
+enum pm_map_kind { PM_MAP_GLOBAL = 0, PM_MAP_CAUSTIC = 1 };
+
+/* "global" or "caustic". */
+const char *pm_map_name(int map);
 
 /* A photon file or map in memory. */
 typedef struct pm_photons {
@@ -57,10 +71,11 @@ int pm_photons_write(const pm_photons *ph, FILE *f, const char *name, pm_error *
 int pm_photons_add_history(pm_photons *ph, const char *cmdline, pm_error *err);
 
 /* What pm_photons_differ finds different between two files' headers. */
-enum { PM_DIFFER_LIGHTS = 1, PM_DIFFER_TIME = 2 };
+enum { PM_DIFFER_LIGHTS = 1, PM_DIFFER_TIME = 2, PM_DIFFER_MAP = 4 };
 
 /* The header fields (PM_DIFFER_*) in which b differs from a: merging such
- * files mixes photons of different lights or shutter times. */
+ * files mixes photons of different lights or shutter times, or a caustic
+ * map into a global one. */
 unsigned pm_photons_differ(const pm_photons *a, const pm_photons *b);
 
 /* Appends src to acc: records concatenated, emitted counts summed, seeds

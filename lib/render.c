@@ -41,6 +41,7 @@ typedef struct ctx {
 	const pm_estimator *est;
 	pm_est_in in;
 	float pixel_angle;  /* a pixel's width in radians at the image centre */
+	pm_gather gather;   /* used if o->gather */
 } ctx;
 
 /* Power heuristic (Veach 1997, §9.2.4) for two strategies, one sample each. */
@@ -229,7 +230,9 @@ walk(const ctx *c, void *sc, pm_vec3 o, pm_vec3 d, int depth, pm_vec3 beta, pm_v
 			if (bs.pdf > 0 && bsdf_light_hit(c, h.p, h.ng, bs.wi, &lh))
 				*here = pm_add(*here, pm_mul(pm_mul(beta, bs.weight),
 				                             emitted_mis(c, &lh, h.p, bs.wi, bs.pdf, 0, nl)));
-			L = first_estimate(c, sc, &h, n, wo, m, depth == 0 ? pc : NULL, &info);
+			/* Gathering draws its own rays: one gather per camera sample. */
+			L = c->o->gather ? pm_gather_radiance(&c->gather, sc, r, h.p, h.ng, n, wo, m, &info)
+			                 : first_estimate(c, sc, &h, n, wo, m, depth == 0 ? pc : NULL, &info);
 			*bucket = pm_add(*bucket, pm_mul(beta, L));
 			if (depth == 0) {
 				out->size = info.size;
@@ -278,7 +281,7 @@ pm_render(const pm_frame *f, const pm_photons *map, const pm_render_opts *o,
 	const pm_scene *s = f->s;
 	const pm_estimator *est = o->estimator;
 	ctx c = {s, f->accel, &f->lights, o, est,
-	         {s, f->accel, map, f->pi, o->k, o->classical_norm}, 0.0f};
+	         {s, f->accel, map, f->pi, o->k, o->classical_norm}, 0.0f, {0}};
 	pm_camera cam;
 	int W, H, fail = 0;
 	size_t npx;
@@ -289,6 +292,10 @@ pm_render(const pm_frame *f, const pm_photons *map, const pm_render_opts *o,
 		return pm_seterr(err, "the %s estimate needs a polygon index", est->name);
 	if (o->classical_norm != PM_NORM_K && o->classical_norm != PM_NORM_K1)
 		return pm_seterr(err, "unknown classical normalisation %d", o->classical_norm);
+	if (o->gather && !est->estimate)
+		return pm_seterr(err, "gathering needs an estimate, not %s", est->name);
+	if (o->gather)
+		pm_gather_init(&c.gather, f, est, &c.in, o->gather);
 	if (pm_camera_init(&cam, &s->camera, err) != 0)
 		return pm_preferr(err, "%s", s->path);
 	c.pixel_angle = 2.0f * cam.tan_half / (float)cam.height;

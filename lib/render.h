@@ -16,6 +16,7 @@
 #include "err.h"
 #include "estimators.h"
 #include "frame.h"
+#include "gather.h"
 #include "image.h"
 #include "photonfile.h"
 #include "progress.h"
@@ -32,6 +33,8 @@ typedef struct pm_render_opts {
 	                     * once per polygon it sees, not per camera sample */
 	uint64_t seed;
 	int max_depth;      /* longest camera path; 0 means 64 */
+	const pm_gather_opts *gather;  /* if set, final gathering at the photon
+	                                * surface instead of the estimate there */
 	pm_progress_fn *progress;  /* if set, called with (rows done, rows) */
 	void *progress_arg;
 } pm_render_opts;

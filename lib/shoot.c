@@ -12,36 +12,42 @@
 #define BATCH 64            /* work items per round */
 #define SHOOT_DOMAIN 0x5348004f4f54ull
 
-typedef struct chunk {
+/* The photons of one chunk's paths, in path order, for one map. */
+typedef struct stash {
 	pm_photon *p;
 	size_t n, cap;
 	uint32_t count[CHUNK];  /* photons stored by each path of the chunk */
+} stash;
+
+typedef struct chunk {
+	stash glob, caus;
 	int oom;
 } chunk;
 
 static void
-push(chunk *c, const pm_photon *ph)
+push(chunk *c, stash *st, const pm_photon *ph)
 {
-	if (c->n == c->cap) {
-		size_t cap = c->cap ? 2 * c->cap : 256;
-		pm_photon *p = realloc(c->p, cap * sizeof *p);
+	if (st->n == st->cap) {
+		size_t cap = st->cap ? 2 * st->cap : 256;
+		pm_photon *p = realloc(st->p, cap * sizeof *p);
 		if (!p) {
 			c->oom = 1;
 			return;
 		}
-		c->p = p;
-		c->cap = cap;
+		st->p = p;
+		st->cap = cap;
 	}
-	c->p[c->n++] = *ph;
+	st->p[st->n++] = *ph;
 }
 
 static void
 trace_path(const pm_scene *s, const pm_accel *a, const pm_lights *L, const pm_shoot_opts *o,
-           uint64_t idx, chunk *c, uint32_t *count)
+           uint64_t idx, chunk *c, int j)
 {
 	pm_rng r = pm_rng_seed(o->seed ^ SHOOT_DOMAIN, idx);
 	pm_vec3 org, d, n, power;
 	int maxb = o->max_bounces > 0 ? o->max_bounces : 256;
+	int specular_only = 1;  /* every hit so far strong: the path is L S* */
 	pm_hit h;
 
 	pm_lights_emit(L, &r, &org, &d, &n, &power);
@@ -60,9 +66,15 @@ trace_path(const pm_scene *s, const pm_accel *a, const pm_lights *L, const pm_sh
 			pm_photon ph;
 			pm_vec3 ns = pm_dot(h.ng, wo) >= 0 ? h.ng : pm_neg(h.ng);
 			pm_photon_pack(&ph, h.p, wo, ns, power);
-			push(c, &ph);
-			(*count)++;
+			push(c, &c->glob, &ph);
+			c->glob.count[j]++;
+			if (specular_only && o->caustic) {
+				push(c, &c->caus, &ph);
+				c->caus.count[j]++;
+			}
 		}
+		if (pm_mat_is_photon_surface(m))
+			specular_only = 0;
 		if (pm_bsdf_sample(m, h.ng, wo, &r, &sc) != 0)
 			return;
 		q = fminf(1.0f, pm_maxc(sc.weight));
@@ -74,67 +86,133 @@ trace_path(const pm_scene *s, const pm_accel *a, const pm_lights *L, const pm_sh
 	}
 }
 
+/* Appends photons from[at .. at+n-1] to a growing array; 0, or -1 out of
+ * memory. */
+static int
+append(pm_photon **arr, size_t *len, size_t *cap, const pm_photon *from, size_t at, size_t n)
+{
+	if (n == 0)         /* arr and from may still be NULL */
+		return 0;
+	if (*len + n > *cap) {
+		size_t c = *cap ? 2 * *cap : 4096;
+		pm_photon *q;
+		while (c < *len + n)
+			c *= 2;
+		if (!(q = realloc(*arr, c * sizeof *q)))
+			return -1;
+		*arr = q;
+		*cap = c;
+	}
+	memcpy(*arr + *len, from + at, n * sizeof *from);
+	*len += n;
+	return 0;
+}
+
+/* 1 if some material continues paths (mirror, glass, strong glossy): without
+ * one there are no caustic photons to wait for. */
+static int
+has_strong(const pm_scene *s)
+{
+	for (int i = 0; i < s->nmats; i++)
+		if (!pm_mat_is_photon_surface(&s->mats[i]))
+			return 1;
+	return 0;
+}
+
 int
 pm_shoot(const pm_scene *s, const pm_accel *a, const pm_lights *L,
          const pm_shoot_opts *o, pm_photons *out, pm_error *err)
 {
-	uint64_t want = o->nphotons, emitted = 0, stored = 0;
-	uint64_t maxp = o->max_paths ? o->max_paths : 64 * want + (1u << 20);
+	uint64_t want = o->nphotons, cwant = o->ncaustic, emitted = 0, cemitted = 0, next = 0;
+	uint64_t most = want > cwant ? want : cwant;
+	uint64_t maxp = o->max_paths ? o->max_paths : 64 * most + (1u << 20);
 	chunk *ch = calloc(BATCH, sizeof *ch);
-	pm_photon *all = NULL;
-	int done = 0, oom = 0;
+	pm_photon *all = NULL, *caus = NULL;
+	size_t stored = 0, ncaus = 0, capcaus = 0, cap = 0;
+	/* Each map is done after the path that stores its last photon; a
+	 * caustic map without a count of its own takes the global map's paths. */
+	int gdone = want == 0, cdone = !o->caustic || (cwant > 0 && !has_strong(s)), oom = 0;
 
 	memset(out, 0, sizeof *out);
+	if (o->caustic)
+		memset(o->caustic, 0, sizeof *o->caustic);
 	if (!ch)
 		return pm_seterr(err, "out of memory");
 	if (want > 0 && !(all = malloc(want * sizeof *all))) {
 		free(ch);
 		return pm_seterr(err, "out of memory for %llu photons", (unsigned long long)want);
 	}
-	while (!done && stored < want && emitted < maxp) {
-		uint64_t base = emitted;
+	cap = want;
+	if (o->caustic && cwant == 0)
+		cdone = gdone;
+	while (!(gdone && cdone) && !oom && next < maxp) {
+		uint64_t base = next;
 		#pragma omp parallel for schedule(dynamic, 1)
 		for (int ci = 0; ci < BATCH; ci++) {
 			chunk *c = &ch[ci];
-			c->n = 0;
-			memset(c->count, 0, sizeof c->count);
+			c->glob.n = c->caus.n = 0;
+			memset(c->glob.count, 0, sizeof c->glob.count);
+			memset(c->caus.count, 0, sizeof c->caus.count);
 			for (int j = 0; j < CHUNK; j++)
-				trace_path(s, a, L, o, base + (uint64_t)ci * CHUNK + j, c, &c->count[j]);
+				trace_path(s, a, L, o, base + (uint64_t)ci * CHUNK + j, c, j);
 		}
-		/* Keep paths in index order until the n-th photon is stored. */
-		for (int ci = 0; ci < BATCH && !done; ci++) {
+		/* Keep paths in index order until each map's last photon is stored. */
+		for (int ci = 0; ci < BATCH && !(gdone && cdone) && !oom; ci++) {
 			chunk *c = &ch[ci];
-			size_t at = 0;
+			size_t at = 0, cat = 0;
 			oom |= c->oom;
-			for (int j = 0; j < CHUNK && !done; j++) {
-				uint64_t take = c->count[j];
-				emitted++;
-				if (take > want - stored)
-					take = want - stored;
-				memcpy(all + stored, c->p + at, take * sizeof *all);
-				stored += take;
-				at += c->count[j];
-				if (stored >= want || emitted >= maxp)
-					done = 1;
+			for (int j = 0; j < CHUNK && !(gdone && cdone) && !oom; j++) {
+				uint64_t take = c->glob.count[j], ctake = c->caus.count[j];
+				int shared = cwant == 0 && !gdone;   /* a path of both maps */
+				next++;
+				if (!gdone) {
+					emitted++;
+					if (take > want - stored)
+						take = want - stored;
+					oom |= append(&all, &stored, &cap, c->glob.p, at, take);
+					if (stored >= want || emitted >= maxp)
+						gdone = 1;
+				}
+				if (!cdone) {
+					cemitted++;
+					if (cwant > 0 && ctake > cwant - ncaus)
+						ctake = cwant - ncaus;
+					oom |= append(&caus, &ncaus, &capcaus, c->caus.p, cat, ctake);
+					if (shared ? gdone : ncaus >= cwant || cemitted >= maxp)
+						cdone = 1;
+				}
+				at += c->glob.count[j];
+				cat += c->caus.count[j];
 			}
 		}
 		if (o->progress)
 			o->progress(o->progress_arg, stored, want);
 	}
-	for (int ci = 0; ci < BATCH; ci++)
-		free(ch[ci].p);
+	for (int ci = 0; ci < BATCH; ci++) {
+		free(ch[ci].glob.p);
+		free(ch[ci].caus.p);
+	}
 	free(ch);
 	if (oom) {
 		free(all);
+		free(caus);
 		return pm_seterr(err, "out of memory while shooting photons");
 	}
 	out->p = all;
-	out->h.version = PM_PHOTONS_VERSION;
+	out->h.version = 1;
 	out->h.kdtree = 0;
 	out->h.count = stored;
 	out->h.emitted = emitted;
 	out->h.light_hash = s->light_hash;
 	out->h.time = o->time;
 	snprintf(out->h.seeds, sizeof out->h.seeds, "%llu", (unsigned long long)o->seed);
+	if (o->caustic) {
+		o->caustic->h = out->h;
+		o->caustic->h.map = PM_MAP_CAUSTIC;
+		o->caustic->h.version = 2;
+		o->caustic->h.count = ncaus;
+		o->caustic->h.emitted = cwant == 0 ? emitted : cemitted;
+		o->caustic->p = caus;
+	}
 	return 0;
 }

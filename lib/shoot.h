@@ -25,6 +25,10 @@ typedef struct pm_shoot_opts {
 	uint64_t max_paths; /* give up after this many paths; 0 means 64 n + 2^20 */
 	pm_progress_fn *progress;  /* if set, called with (photons stored, n) */
 	void *progress_arg;
+	pm_photons *caustic; /* if set, also receives the caustic map
+	                      * (photonfile.h, PM_MAP_CAUSTIC) */
+	uint64_t ncaustic;   /* caustic photons to store; 0: those of the global
+	                      * map's light paths */
 } pm_shoot_opts;
 
 /* Fills out (photons, header: count, emitted, light_hash, time, seed; the
@@ -32,7 +36,16 @@ typedef struct pm_shoot_opts {
  * Stops after the path that stores the n-th photon; the photons it would
  * have stored later are dropped and every path begun is counted as emitted.
  * If max_paths is reached first the file holds fewer photons; that is not
- * an error (some scenes store few photons) and shows as count < n. */
+ * an error (some scenes store few photons) and shows as count < n.
+ * o->caustic, if set, gets the L S+ D photons the paths stored: with
+ * ncaustic 0 those of the global map's paths (the n-th photon's path
+ * included), with the same emitted count, so they are copies of photons of
+ * the global map, which keeps them too (final gathering reads them there at
+ * second bounces); else paths go on, numbered on from the same sequence,
+ * until ncaustic of them are stored (same rule as for n, max_paths bounding
+ * both), and the caustic map counts its own emitted paths. A scene without
+ * mirror, glass or strong glossy materials gives an empty caustic map at
+ * once. */
 int pm_shoot(const pm_scene *s, const pm_accel *a, const pm_lights *L,
              const pm_shoot_opts *o, pm_photons *out, pm_error *err);
 

@@ -77,6 +77,11 @@ main(int argc, char **argv)
 			continue;
 		}
 		differ = pm_photons_differ(&acc, &ph);
+		/* Not even forced: a caustic map is a subset of a global one. */
+		if (differ & PM_DIFFER_MAP)
+			die("%s: a %s map, %s is a %s map: they cannot be merged",
+			    shown_name(name, qa, sizeof qa), pm_map_name(ph.h.map),
+			    shown_name(first, qb, sizeof qb), pm_map_name(acc.h.map));
 		if (differ & PM_DIFFER_LIGHTS) {
 			if (!force)
 				die("%s: light_hash %016llx differs from %s (%016llx); --force merges anyway",
@@ -104,7 +109,6 @@ main(int argc, char **argv)
 	if (pm_kd_build(acc.p, (size_t)acc.h.count, &err))
 		die_err(&err);
 	acc.h.kdtree = 1;
-	acc.h.version = PM_PHOTONS_VERSION;
 	if (pm_photons_add_history(&acc, cmdline(), &err))
 		die_err(&err);
 	if (pm_out_open(&o, out, &err))

@@ -105,6 +105,7 @@ print_stats(FILE *o, const pm_photons *ph, size_t header_bytes)
 		sum[c] /= e;
 	fprintf(o, "format: %s\n", h->kdtree ? "photonmap" : "photons");
 	fprintf(o, "version: %d\n", h->version);
+	fprintf(o, "map: %s\n", pm_map_name(h->map));
 	fprintf(o, "photons: %llu\n", (unsigned long long)h->count);
 	fprintf(o, "emitted: %llu\n", (unsigned long long)h->emitted);
 	fprintf(o, "bytes_per_photon: %d\n", PM_PHOTON_BYTES);

@@ -8,7 +8,9 @@
 #include "estimate.h"
 #include "estimators.h"
 #include "frame.h"
+#include "gather.h"
 #include "image.h"
+#include "irradiance.h"
 #include "pass.h"
 #include "passid.h"
 #include "photonfile.h"
@@ -36,7 +38,8 @@ make_usage(void)
 	}
 	snprintf(usage, sizeof usage,
 	         "pm-render SCENE [MAP|-] [-e %s] [-k K] [--classical-norm k|k-1] [-p SAMPLES] "
-	         "[-l N] [--estimates pixel|sample] [-P I/N] [-s SEED] [-t TIME] [-j THREADS] [-q] [--force] -o OUT.exr", names);
+	         "[-l N] [--estimates pixel|sample] [-g RAYS [--caustic CMAP] [--irradiance EVERY] [--guided]] "
+	         "[-P I/N] [-s SEED] [-t TIME] [-j THREADS] [-q] [--force] -o OUT.exr", names);
 	n = (size_t)snprintf(est_help, sizeof est_help, "estimator:");
 	for (const pm_estimator *e = pm_estimators; e->name && n < sizeof est_help; e++)
 		n += (size_t)snprintf(est_help + n, sizeof est_help - n, " %s: %s;", e->name, e->help);
@@ -44,10 +47,24 @@ make_usage(void)
 		est_help[n - 1] = 0;
 }
 
-enum { FORCE = OPT_LONG, MAX_SAMPLES, CLASSICAL_NORM, ESTIMATES };
+enum { FORCE = OPT_LONG, MAX_SAMPLES, CLASSICAL_NORM, ESTIMATES, CAUSTIC, IRRADIANCE, GUIDED };
 
 static const opt opts[] = {
 	{ 'e', "estimator", "EST", est_help, est_default, 0 },
+	{ 'g', "gather", "RAYS", "final gathering with RAYS gather rays per pixel (shared among "
+	  "the -p samples, each taking RAYS/SAMPLES rounded up): at the first diffuse or soft "
+	  "glossy hit the rays sample the BSDF and read the estimate (-e) where they land, "
+	  "instead of the estimate shown there; 0 shows the estimate", "0: off", 0 },
+	{ CAUSTIC, "caustic", "CMAP", "with -g, the caustic map (pm-shoot --caustic, built), "
+	  "shown directly; without it gather rays find caustics by themselves (noisier)",
+	  "none", 0 },
+	{ IRRADIANCE, "irradiance", "EVERY", "with -g, precompute the estimate at every "
+	  "EVERY-th photon of MAP (Christensen 1999), so a gather ray landing on a diffuse "
+	  "surface reads the nearest of those instead of estimating; 0 estimates at each",
+	  "4", 0 },
+	{ GUIDED, "guided", NULL, "with -g, draw half the gather rays from the incoming "
+	  "directions of the photons near the point (Jensen 1995); the mean stays that of "
+	  "BSDF sampling", "BSDF sampling only", 0 },
 	{ 'j', "threads", "THREADS", "threads, 0 for all cores; the output does not depend on it", "0", 1 },
 	{ 'k', "neighbours", "K", "nearest photons per estimate", "50", 0 },
 	{ CLASSICAL_NORM, "classical-norm", "k|k-1", "the classical estimate's flux over pi r^2: of "
@@ -102,12 +119,31 @@ is_photon_file(const char *path)
 	return yes;
 }
 
+/* Reads a photon map (not a plain photon file) or dies. */
+static void
+read_map(const char *name, pm_photons *m)
+{
+	FILE *f = open_input(name);
+	pm_error err;
+
+	if (pm_photons_read(m, f, name, &err) != 0)
+		die_err(&err);
+	if (f != stdin)
+		fclose(f);
+	if (!m->h.kdtree)
+		die("'%s': a photon file, not a photon map: run it through pm-build", name);
+}
+
 int
 main(int argc, char **argv)
 {
 	pm_render_opts o = {.estimator = pm_estimator_find(est_default), .k = 50, .spp = 16,
 	                    .estimate_once = 1};
-	const char *out = NULL, *mapname = NULL;
+	const char *out = NULL, *mapname = NULL, *cname = NULL;
+	int gather_rays = 0, irr_every = 4, guided = 0;
+	pm_gather_opts go = {0};
+	pm_photons cmap = {0};
+	pm_irradiance irr = {0};
 	int c, threads = 0, force = 0, have_time = 0, have_seed = 0, quiet = 0, max_spp = 65536;
 	uint32_t pass_i = 0, pass_n = 0;
 	progress bar;
@@ -128,6 +164,10 @@ main(int argc, char **argv)
 				usage_err(usage, "-e: unknown estimator '%s'", optarg);
 			break;
 		case FORCE: force = 1; break;
+		case 'g': gather_rays = (int)parse_int(optarg, 0, 1 << 20, "-g", usage); break;
+		case CAUSTIC: cname = optarg; break;
+		case IRRADIANCE: irr_every = (int)parse_int(optarg, 0, 1 << 20, "--irradiance", usage); break;
+		case GUIDED: guided = 1; break;
 		case 'j': threads = (int)parse_int(optarg, 0, 4096, "-j", usage); break;
 		case 'k': o.k = (int)parse_int(optarg, 1, 100000, "-k", usage); break;
 		case 'o': out = optarg; break;
@@ -169,6 +209,13 @@ main(int argc, char **argv)
 		          o.estimator->name);
 	if (o.classical_norm == PM_NORM_K1 && o.k < 2)
 		usage_err(usage, "--classical-norm k-1 needs -k 2 or more (one photon would give 0)");
+	if (gather_rays > 0 && !o.estimator->estimate)
+		usage_err(usage, "-g gathers with a photon estimate (-e classical or compensated), not %s",
+		          o.estimator->name);
+	if (cname && gather_rays == 0)
+		usage_err(usage, "--caustic is shown only when gathering (-g RAYS)");
+	if (guided && gather_rays == 0)
+		usage_err(usage, "--guided steers gather rays: give -g RAYS");
 	if (o.spp > max_spp)
 		usage_err(usage, "-p: %d is more than %d samples per pixel (a typo? --max-samples raises the limit)",
 		          o.spp, max_spp);
@@ -178,6 +225,11 @@ main(int argc, char **argv)
 	if (!o.light_samples)
 		o.light_samples = o.estimator->estimate && (o.estimator->needs & PM_NEEDS_MAP) ? 4 : 1;
 	check_output(usage, out, OUT_EXR, argv + optind, argc - optind);
+	if (cname) {
+		char *ins[2] = {(char *)mapname, (char *)cname};
+		check_output(usage, out, OUT_EXR, ins + 1, 1);
+		check_stdin_once(usage, ins, 2);
+	}
 	pm_pass_apply(pass_i, pass_n, &o.seed, &have_seed, &time, &have_time);
 	set_threads(threads);
 
@@ -187,13 +239,7 @@ main(int argc, char **argv)
 		die_err(&err);
 	}
 	if (mapname) {
-		FILE *f = open_input(mapname);
-		if (pm_photons_read(&map, f, mapname, &err) != 0)
-			die_err(&err);
-		if (f != stdin)
-			fclose(f);
-		if (!map.h.kdtree)
-			die("'%s': a photon file, not a photon map: run it through pm-build", mapname);
+		read_map(mapname, &map);
 		if (map.h.light_hash != s.light_hash && !force)
 			die("'%s': photon map of another scene (light_hash %016" PRIx64 ", '%s' has %016" PRIx64
 			    ": its geometry, materials or lights differ); --force to use it",
@@ -203,8 +249,29 @@ main(int argc, char **argv)
 		if (!have_time)
 			time = (float)map.h.time;
 	}
+	if (cname) {
+		read_map(cname, &cmap);
+		if (cmap.h.map != PM_MAP_CAUSTIC)
+			die("'%s': a global map where the caustic map belongs (pm-shoot --caustic makes one)", cname);
+		if (pm_photons_differ(&map, &cmap) & (PM_DIFFER_LIGHTS | PM_DIFFER_TIME) && !force)
+			die("'%s': caustic map of another scene or time than '%s'; --force to use it", cname, mapname);
+	}
+	if (mapname && map.h.map != PM_MAP_GLOBAL)
+		die("'%s': a caustic map where the global map belongs: give it as --caustic", mapname);
 	if (pm_frame_build(&fr, &s, time, o.estimator->needs, &err) != 0)
 		die_err(&err);
+	if (gather_rays > 0) {
+		go.rays = (gather_rays + o.spp - 1) / o.spp;
+		go.caustic = cname ? &cmap : NULL;
+		go.guided = guided;
+		if (irr_every > 0) {
+			pm_est_in in = {&s, fr.accel, &map, fr.pi, o.k, o.classical_norm};
+			if (pm_irradiance_build(&irr, o.estimator, &in, irr_every, &err) != 0)
+				die_err(&err);
+			go.irr = &irr;
+		}
+		o.gather = &go;
+	}
 	progress_start(&bar, "rows", (uint64_t)s.camera.height, quiet);
 	o.progress = progress_hook;
 	o.progress_arg = &bar;
@@ -238,6 +305,15 @@ main(int argc, char **argv)
 	setattr(&img, "pm.estimator", o.estimator->name);
 	snprintf(buf, sizeof buf, "%d", o.k);
 	setattr(&img, "pm.k", buf);
+	if (gather_rays > 0) {
+		char g[160];
+		snprintf(g, sizeof g, "%d rays per sample, caustic map %s, irradiance %s%.0d, %s",
+		         go.rays, cname ? "yes" : "no", irr_every ? "every " : "off", irr_every,
+		         guided ? "guided" : "BSDF sampling");
+		setattr(&img, "pm.gather", g);
+		snprintf(buf, sizeof buf, "%" PRIu64, cmap.h.count);
+		setattr(&img, "pm.caustic_photons", buf);
+	}
 	snprintf(buf, sizeof buf, "%016" PRIx64, pm_pass_id(s.view_hash, o.estimator->name,
 	                                                     o.seed, time, map.h.seeds));
 	setattr(&img, "pm.pass_ids", buf);
@@ -247,6 +323,8 @@ main(int argc, char **argv)
 	pm_image_free(&img);
 	pm_frame_free(&fr);
 	pm_photons_free(&map);
+	pm_photons_free(&cmap);
+	pm_irradiance_free(&irr);
 	pm_scene_free(&s);
 	return 0;
 }

@@ -16,14 +16,22 @@
 #include "util.h"
 
 static const char usage[] =
-	"pm-shoot SCENE [-n PHOTONS] [-P I/N] [-s SEED] [-t TIME] [-j THREADS] [-o FILE|-] [-q]";
+	"pm-shoot SCENE [-n PHOTONS] [-P I/N] [-s SEED] [-t TIME] [-j THREADS] [-o FILE|-] "
+	"[--caustic CFILE [--caustic-photons N]] [-q]";
 
-enum { MAX_PHOTONS = OPT_LONG };
+enum { MAX_PHOTONS = OPT_LONG, CAUSTIC, CAUSTIC_PHOTONS };
 
 static const opt opts[] = {
 	{ 'n', "photons", "PHOTONS", "photons to store, 1e6 or 2.5e5 allowed", "200000", 0 },
 	{ MAX_PHOTONS, "max-photons", "N", "refuse -n above N, against typos", "100000000: 2 GB", 0 },
 	{ 'o', "output", "FILE", "output file, - for stdout", "-", 0 },
+	{ CAUSTIC, "caustic", "CFILE", "also write the caustic photons of the same light paths "
+	  "(those that reached a diffuse surface through mirrors, glass and strong glossy "
+	  "surfaces only) to CFILE, a photon file with map=caustic; they stay in FILE too",
+	  "none", 0 },
+	{ CAUSTIC_PHOTONS, "caustic-photons", "N", "with --caustic, go on shooting until "
+	  "CFILE holds N photons (it then counts its own emitted paths); caustics are "
+	  "sharp and take many photons", "0: those of FILE's paths", 0 },
 	{ 'P', "pass", "I/N", "pass I of N: seed and time derived from I and N (see pm-shoot(1)); "
 	  "-s and -t, if given, override them", "no pass", 0 },
 	{ 'q', "quiet", NULL, "quiet: no warnings, no progress bar", NULL, 1 },
@@ -45,14 +53,14 @@ main(int argc, char **argv)
 {
 	pm_shoot_opts o = {.nphotons = 200000};
 	uint64_t max_photons = 100000000;
-	const char *out = "-";
+	const char *out = "-", *cout = NULL;
 	int c, threads = 0, quiet = 0, have_seed = 0, have_time = 0;
 	uint32_t pass_i = 0, pass_n = 0;
 	progress bar;
 	pm_scene s;
 	pm_frame fr;
-	pm_photons ph;
-	pm_out fo;
+	pm_photons ph, caus;
+	pm_out fo, co;
 	pm_error err;
 
 	opt_init(&shoot, argc, argv);
@@ -62,6 +70,8 @@ main(int argc, char **argv)
 		case MAX_PHOTONS: max_photons = (uint64_t)parse_int(optarg, 0, 4000000000LL, "--max-photons", usage); break;
 		case 'n': o.nphotons = (uint64_t)parse_int(optarg, 0, 4000000000LL, "-n", usage); break;
 		case 'o': out = optarg; break;
+		case CAUSTIC: cout = optarg; break;
+		case CAUSTIC_PHOTONS: o.ncaustic = (uint64_t)parse_int(optarg, 0, 4000000000LL, "--caustic-photons", usage); break;
 		case 'P':
 			if (pm_pass_parse(optarg, &pass_i, &pass_n, &err) != 0)
 				usage_err(usage, "-P: %s", err.msg);
@@ -77,6 +87,16 @@ main(int argc, char **argv)
 		usage_err(usage, "-n: %llu is more than %llu photons (a typo? --max-photons raises the limit)",
 		          (unsigned long long)o.nphotons, (unsigned long long)max_photons);
 	check_output(usage, out, OUT_PHOTONS, argv + optind, 1);
+	if (o.ncaustic > 0 && !cout)
+		usage_err(usage, "--caustic-photons needs --caustic CFILE");
+	if (o.ncaustic > max_photons)
+		usage_err(usage, "--caustic-photons: %llu is more than %llu photons (a typo? --max-photons raises the limit)",
+		          (unsigned long long)o.ncaustic, (unsigned long long)max_photons);
+	if (cout) {
+		check_output(usage, cout, OUT_PHOTONS, argv + optind, 1);
+		if (strcmp(cout, "-") == 0 || strcmp(cout, out) == 0)
+			usage_err(usage, "--caustic: '%s' must be a file other than the output", cout);
+	}
 	pm_pass_apply(pass_i, pass_n, &o.seed, &have_seed, &o.time, &have_time);
 	set_threads(threads);
 
@@ -87,6 +107,7 @@ main(int argc, char **argv)
 	progress_start(&bar, "photons", o.nphotons, quiet);
 	o.progress = progress_hook;
 	o.progress_arg = &bar;
+	o.caustic = cout ? &caus : NULL;
 	if (pm_shoot(&s, fr.accel, &fr.lights, &o, &ph, &err) != 0)
 		die_err(&err);
 	progress_end(&bar, ph.h.count);
@@ -96,14 +117,36 @@ main(int argc, char **argv)
 		     (unsigned long long)o.nphotons, (unsigned long long)ph.h.emitted);
 	if (pm_photons_add_history(&ph, cmdline(), &err) != 0)
 		die_err(&err);
-	if (pm_out_open(&fo, out, &err) != 0)
+	/* Both outputs are written whole before either appears. */
+	if (cout) {
+		if (pm_photons_add_history(&caus, cmdline(), &err) != 0)
+			die_err(&err);
+		if (pm_out_open(&co, cout, &err) != 0)
+			die_err(&err);
+		if (pm_photons_write(&caus, co.f, co.path, &err) != 0) {
+			pm_out_abort(&co);
+			die_err(&err);
+		}
+	}
+	if (pm_out_open(&fo, out, &err) != 0) {
+		if (cout)
+			pm_out_abort(&co);
 		die_err(&err);
+	}
 	if (pm_photons_write(&ph, fo.f, fo.path, &err) != 0) {
+		pm_out_abort(&fo);
+		if (cout)
+			pm_out_abort(&co);
+		die_err(&err);
+	}
+	if (cout && pm_out_commit(&co, &err) != 0) {
 		pm_out_abort(&fo);
 		die_err(&err);
 	}
 	if (pm_out_commit(&fo, &err) != 0)
 		die_err(&err);
+	if (cout)
+		pm_photons_free(&caus);
 	pm_photons_free(&ph);
 	pm_frame_free(&fr);
 	pm_scene_free(&s);

@@ -59,7 +59,7 @@ hdr=$(awk 'length == 0 { print n + 1; exit } { n += length + 1 }' map.pm)   # he
 head -c $((size - 7)) map.pm >trunc.pm                 # cut inside a record
 head -c $((hdr + 40)) map.pm >trunc2.pm                # two records of many
 head -c 30 map.pm >trunc3.pm                           # cut in the header
-sed '2s/version=1/version=2/' map.pm >version.pm
+sed '2s/version=1/version=3/' map.pm >version.pm
 sed '4s/record_size=20/record_size=24/' map.pm >recsize.pm
 sed 's/^count=.*/count=99999999999/' map.pm >count.pm
 sed 's/^count=.*/count=4000000000/' map.pm >count2.pm

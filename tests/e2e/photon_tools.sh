@@ -113,8 +113,8 @@ expect_fail "garbage refused" 1 "^pm-dump: 'garbage': not a photon file (no PM-P
 expect_fail "empty input refused" 1 "^pm-build: stdin: empty, not a photon file$" sh -c 'pm-build </dev/null >/dev/null'
 expect_fail "missing file" 1 "^pm-dump: cannot open 'nope.pm': No such file or directory$" pm-dump --tsv nope.pm
 expect_fail "near needs a map" 1 "^pm-dump: 'a.pm': a photon file, not a photon map (kdtree=0); run pm-build on it first$" pm-dump --near 0,0,0 a.pm
-sed 's/^version=1$/version=2/' full.pm >v2.pm
-expect_fail "newer version refused" 1 "^pm-dump: 'v2.pm': photon file version 2 is newer than this pm (1)$" pm-dump --stats v2.pm
+sed 's/^version=1$/version=3/' full.pm >v2.pm
+expect_fail "newer version refused" 1 "^pm-dump: 'v2.pm': photon file version 3 is newer than this pm (2)$" pm-dump --stats v2.pm
 
 # --- the command line ----------------------------------------------------------
 pm-build -h >help.txt; rc=$?

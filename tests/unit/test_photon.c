@@ -399,8 +399,8 @@ TEST(reader_refusals)
 		fclose(f);
 	}
 	/* a newer version is named even when it brings keys this pm lacks */
-	REFUSE(mkfile("version", "version=2\nfancy=yes", 3, 0, NULL), "x.pm",
-	       "'x.pm': photon file version 2 is newer than this pm (1)");
+	REFUSE(mkfile("version", "version=3\nfancy=yes", 3, 0, NULL), "x.pm",
+	       "'x.pm': photon file version 3 is newer than this pm (2)");
 	REFUSE(mkfile("version", "version=0", 3, 0, NULL), "x.pm", "bad version '0'");
 	REFUSE(mkfile("record_size", "record_size=24", 3, 0, NULL), "x.pm",
 	       "'x.pm': line 4: record_size=24 is not supported");

@@ -1,0 +1,44 @@
+/* guide.h — importance sampling by the photon map (Jensen 1995, "Importance
+ * Driven Path Tracing using the Photon Map", EGWR): the incoming directions
+ * of the photons nearest x, binned by power into a hemisphere histogram
+ * around n whose cells are equal in solid angle, give a density over
+ * directions that follows where x's indirect light comes from.
+ *
+ * Callers mix it one to one with BSDF sampling (pm_guide_mix): a one-sample
+ * mixture whose weight f cos / (p_bsdf / 2 + p_guide / 2) is exact whatever
+ * the histogram holds and wherever f cos > 0, so the expected value is that
+ * of BSDF sampling and only the variance changes. */
+#ifndef PM_GUIDE_H
+#define PM_GUIDE_H
+
+#include "bsdf.h"
+#include "photonfile.h"
+#include "rng.h"
+
+#define PM_GUIDE_THETA 8    /* cells in cos(theta): equal solid angle */
+#define PM_GUIDE_PHI 16     /* cells in phi */
+#define PM_GUIDE_CELLS (PM_GUIDE_THETA * PM_GUIDE_PHI)
+#define PM_GUIDE_K 64       /* photons read */
+
+typedef struct pm_guide {
+	pm_vec3 n, t, b;                 /* the hemisphere's frame */
+	float cdf[PM_GUIDE_CELLS + 1];   /* cumulative power over the cells */
+	int empty;                       /* no photon arrives in front of n */
+} pm_guide;
+
+/* Builds the histogram at x, n (unit) from the PM_GUIDE_K photons of map
+ * nearest x (a built photon map). */
+void pm_guide_build(pm_guide *gd, const pm_photons *map, pm_vec3 x, pm_vec3 n);
+
+/* Solid-angle density of w under the histogram (0 below n or if empty). */
+float pm_guide_pdf(const pm_guide *gd, pm_vec3 w);
+
+/* Samples a direction of x's BSDF lobe for gathering: with probability 1/2
+ * from the BSDF, else from the histogram (BSDF alone if gd is NULL or
+ * empty). Fills s as pm_bsdf_sample does, weight = f cos / mixture density.
+ * m is diffuse or glossy; ng the geometric front normal, n on wo's side.
+ * Returns -1 for a direction that carries nothing. */
+int pm_guide_mix(const pm_guide *gd, const pm_material *m, pm_vec3 ng, pm_vec3 n,
+                 pm_vec3 wo, pm_rng *r, pm_scatter *s);
+
+#endif
