@@ -36,7 +36,7 @@ make_usage(void)
 	}
 	snprintf(usage, sizeof usage,
 	         "pm-render SCENE [MAP|-] [-e %s] [-k K] [--classical-norm k|k-1] [-p SAMPLES] "
-	         "[-P I/N] [-s SEED] [-t TIME] [-j THREADS] [-q] [--force] -o OUT.exr", names);
+	         "[-P I/N] [--consistent ALPHA] [-s SEED] [-t TIME] [-j THREADS] [-q] [--force] -o OUT.exr", names);
 	n = (size_t)snprintf(est_help, sizeof est_help, "estimator:");
 	for (const pm_estimator *e = pm_estimators; e->name && n < sizeof est_help; e++)
 		n += (size_t)snprintf(est_help + n, sizeof est_help - n, " %s: %s;", e->name, e->help);
@@ -44,9 +44,13 @@ make_usage(void)
 		est_help[n - 1] = 0;
 }
 
-enum { FORCE = OPT_LONG, MAX_SAMPLES, CLASSICAL_NORM };
+enum { FORCE = OPT_LONG, MAX_SAMPLES, CLASSICAL_NORM, CONSISTENT };
 
 static const opt opts[] = {
+	{ CONSISTENT, "consistent", "ALPHA", "the consistent mode: pass I of -P I/N shrinks the "
+	  "estimate's support (the classical disc's radius, the compensated cube's half-size) "
+	  "found with K photons by I^((ALPHA-1)/2), 0 < ALPHA < 1 (2/3 is usual), so that "
+	  "averages of passes 1..N converge to the exact image (see pm-render(1))", "off: fixed K", 0 },
 	{ 'e', "estimator", "EST", est_help, est_default, 0 },
 	{ 'j', "threads", "THREADS", "threads, 0 for all cores; the output does not depend on it", "0", 1 },
 	{ 'k', "neighbours", "K", "nearest photons per estimate", "50", 0 },
@@ -83,6 +87,20 @@ setattr(pm_image *img, const char *k, const char *v)
 		die_err(&err);
 }
 
+/* pm.consistent is what pm-average checks passes agree on; pm.shrink is
+ * this pass's own scale. */
+static void
+consistent_attrs(pm_image *img, double alpha, double shrink)
+{
+	char buf[64];
+
+	if (alpha > 0)
+		snprintf(buf, sizeof buf, "alpha %.9g", alpha);
+	setattr(img, "pm.consistent", alpha > 0 ? buf : "off");
+	snprintf(buf, sizeof buf, "%.9g", alpha > 0 ? shrink : 1.0);
+	setattr(img, "pm.shrink", buf);
+}
+
 /* 1 if path begins as a photon file does. */
 static int
 is_photon_file(const char *path)
@@ -105,6 +123,7 @@ main(int argc, char **argv)
 	uint32_t pass_i = 0, pass_n = 0;
 	progress bar;
 	float time = 0;
+	double alpha = 0;
 	pm_scene s;
 	pm_photons map = {0};
 	pm_frame fr;
@@ -121,6 +140,11 @@ main(int argc, char **argv)
 				usage_err(usage, "-e: unknown estimator '%s'", optarg);
 			break;
 		case FORCE: force = 1; break;
+		case CONSISTENT:
+			alpha = parse_real(optarg, 0, 1, "--consistent", usage);
+			if (!(alpha > 0 && alpha < 1))
+				usage_err(usage, "--consistent: ALPHA must be between 0 and 1, not %s", optarg);
+			break;
 		case 'j': threads = (int)parse_int(optarg, 0, 4096, "-j", usage); break;
 		case 'k': o.k = (int)parse_int(optarg, 1, 100000, "-k", usage); break;
 		case 'o': out = optarg; break;
@@ -158,6 +182,13 @@ main(int argc, char **argv)
 	if (o.spp > max_spp)
 		usage_err(usage, "-p: %d is more than %d samples per pixel (a typo? --max-samples raises the limit)",
 		          o.spp, max_spp);
+	if (alpha > 0 && pass_n == 0)
+		usage_err(usage, "--consistent needs -P I/N: the pass index sets the support");
+	if (alpha > 0 && (!o.estimator->estimate || !(o.estimator->needs & PM_NEEDS_MAP)))
+		usage_err(usage, "--consistent is for estimates from a photon map, not -e %s",
+		          o.estimator->name);
+	if (alpha > 0)
+		o.shrink = pm_pass_shrink(pass_i, alpha);
 	check_output(usage, out, OUT_EXR, argv + optind, argc - optind);
 	pm_pass_apply(pass_i, pass_n, &o.seed, &have_seed, &time, &have_time);
 	set_threads(threads);
@@ -216,6 +247,7 @@ main(int argc, char **argv)
 	setattr(&img, "pm.estimator", o.estimator->name);
 	snprintf(buf, sizeof buf, "%d", o.k);
 	setattr(&img, "pm.k", buf);
+	consistent_attrs(&img, alpha, o.shrink);
 	snprintf(buf, sizeof buf, "%016" PRIx64, pm_pass_id(s.view_hash, o.estimator->name,
 	                                                     o.seed, time, map.h.seeds));
 	setattr(&img, "pm.pass_ids", buf);
