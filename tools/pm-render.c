@@ -245,6 +245,7 @@ main(int argc, char **argv)
 	snprintf(buf, sizeof buf, "%016" PRIx64, s.view_hash);
 	setattr(&img, "pm.scene_hash", buf);
 	setattr(&img, "pm.estimator", o.estimator->name);
+	setattr(&img, "pm.light_paths", mapname ? map.h.light_paths : "none");
 	snprintf(buf, sizeof buf, "%d", o.k);
 	setattr(&img, "pm.k", buf);
 	consistent_attrs(&img, alpha, o.shrink);
