@@ -5,12 +5,14 @@
 # Usage: bench/ldpaths.sh [BUILD_DIR]   (default build; needs bin/ and
 # bench/errsplit: make bench-progs). Environment, with defaults:
 #   NMAX=32 passes, PHOTONS=10000 per pass, K=50, SPP=4, EST=compensated,
-#   SCENES="mirror furnace cornell", REF_PASSES=4 REF_SPP=256 (the Cornell
-#   reference, bench/passes.sh)
+#   SCENES="mirror caustic furnace cornell", REF_PASSES=4 REF_SPP=256 (the
+#   Cornell reference, bench/passes.sh)
 # Scenes: tests/scenes/mirror.pms, a point light over a mirror floor under
 # a dark ceiling (the ceiling's photons come through the mirror: a caustic,
-# placed by the emission direction alone); tests/scenes/furnace.pms (exact
-# radiance 2); the Cornell box. All 64 x 48 or 64 x 64.
+# placed by the emission direction alone); examples/caustic (the Cornell box
+# with a glass and a mirror sphere; no reference: pass spread only);
+# tests/scenes/furnace.pms (exact radiance 2); the Cornell box. All 64 x 48
+# or 64 x 64.
 #
 # Each pass's map is rendered twice: with -s 1 in every pass (the view pass
 # the same each time, so the spread between passes, passvar, is the photon
@@ -25,7 +27,7 @@ top=$(cd "$(dirname "$0")/.." && pwd)
 B=${1:-build}
 case $B in /*) ;; *) B=$top/$B ;; esac
 NMAX=${NMAX:-32} PHOTONS=${PHOTONS:-10000} K=${K:-50} SPP=${SPP:-4} EST=${EST:-compensated}
-SCENES=${SCENES:-mirror furnace cornell}
+SCENES=${SCENES:-mirror caustic furnace cornell}
 . "$top/bench/passes.sh"
 out=$res/ldpaths.tsv
 printf 'scene\tpaths\tN\trmse\trelmse\tpassvar\tmean\n' >"$out"
@@ -33,7 +35,7 @@ printf 'scene\tpaths\tN\trmse\trelmse\tpassvar\tmean\n' >"$out"
 for name in $SCENES; do
 	case $name in
 	furnace) sc=$(scene "$name" 64 48) refopt="-v 2" ref= ;;
-	mirror) sc=$(scene "$name" 64 64) refopt= ref= ;;
+	mirror|caustic) sc=$(scene "$name" 64 64) refopt= ref= ;;
 	*) sc=$(scene "$name" 64 64) refopt= ref=$(reference "$name" "$sc") ;;
 	esac
 	echo "ldpaths: $name, $NMAX pass pairs of $PHOTONS photons, $EST, k = $K" >&2

@@ -47,10 +47,6 @@ make_usage(void)
 enum { FORCE = OPT_LONG, MAX_SAMPLES, CLASSICAL_NORM, CONSISTENT };
 
 static const opt opts[] = {
-	{ CONSISTENT, "consistent", "ALPHA", "the consistent mode: pass I of -P I/N shrinks the "
-	  "estimate's support (the classical disc's radius, the compensated cube's half-size) "
-	  "found with K photons by I^((ALPHA-1)/2), 0 < ALPHA < 1 (2/3 is usual), so that "
-	  "averages of passes 1..N converge to the exact image (see pm-render(1))", "off: fixed K", 0 },
 	{ 'e', "estimator", "EST", est_help, est_default, 0 },
 	{ 'j', "threads", "THREADS", "threads, 0 for all cores; the output does not depend on it", "0", 1 },
 	{ 'k', "neighbours", "K", "nearest photons per estimate", "50", 0 },
@@ -64,6 +60,10 @@ static const opt opts[] = {
 	{ MAX_SAMPLES, "max-samples", "N", "refuse -p above N, against typos", "65536", 0 },
 	{ 'P', "pass", "I/N", "pass I of N: seed and time derived from I and N, as pm-shoot -P "
 	  "does (see pm-render(1)); -s and -t override them", "no pass", 0 },
+	{ CONSISTENT, "consistent", "ALPHA", "the consistent mode: pass I of -P I/N shrinks the "
+	  "estimate's support (the classical disc's radius, the compensated cube's half-size) "
+	  "found with K photons by I^((ALPHA-1)/2), 0 < ALPHA < 1 (2/3 is usual), so that "
+	  "averages of passes 1..N converge to the exact image (see pm-render(1))", "off: fixed K", 0 },
 	{ 'q', "quiet", NULL, "quiet: no progress bar", NULL, 1 },
 	{ 's', "seed", "SEED", "random seed", "0", 0 },
 	{ 't', "time", "TIME", "shutter time in [0,1]", "the map's time, else 0", 0 },
