@@ -246,6 +246,7 @@ main(int argc, char **argv)
 	setattr(&img, "pm.scene_hash", buf);
 	setattr(&img, "pm.estimator", o.estimator->name);
 	setattr(&img, "pm.light_paths", mapname ? map.h.light_paths : "none");
+	setattr(&img, "pm.density", mapname ? map.h.density : "none");
 	snprintf(buf, sizeof buf, "%d", o.k);
 	setattr(&img, "pm.k", buf);
 	consistent_attrs(&img, alpha, o.shrink);
