@@ -11,6 +11,9 @@
 #include "rng.h"
 
 #define DENSITY_DOMAIN 0x44454e534954ull
+/* A photon not stored looks for stored ones among its k, 4k, 16k nearest:
+ * where few are kept (f k < 1) the k nearest often hold none. */
+#define REACH 16
 
 /* The points the camera sees, as photon records (kd-tree searches) whose
  * power's first channel holds the target radius C a_j (to 2^-10). */
@@ -67,7 +70,7 @@ pm_density_control(const pm_frame *f, pm_photons *map, const pm_density_opts *o,
 	}
 	keep = malloc(n);
 	extra = calloc(3 * n, sizeof *extra);
-	nn = malloc((size_t)(k + 1) * sizeof *nn);
+	nn = malloc((size_t)(REACH * k + 1) * sizeof *nn);
 	if (!keep || !extra || !nn) {
 		free(keep);
 		free(extra);
@@ -113,9 +116,13 @@ pm_density_control(const pm_frame *f, pm_photons *map, const pm_density_opts *o,
 		int got, to = 0;
 		if (keep[i] == 1)
 			continue;
-		got = pm_kd_knn(map->p, n, q, k, PM_L2, INFINITY, nn, &rk2);
-		for (int j = 0; j < got; j++)
-			to += keep[nn[j].idx] == 1;
+		for (int kk = k; to == 0 && kk <= REACH * k; kk *= 4) {
+			got = pm_kd_knn(map->p, n, q, kk, PM_L2, INFINITY, nn, &rk2);
+			for (int j = 0; j < got; j++)
+				to += keep[nn[j].idx] == 1;
+			if (got < kk)
+				break;
+		}
 		if (to == 0) {
 			keep[i] = 2;    /* stored, but gives nothing to others' lists */
 			continue;

@@ -13,8 +13,8 @@
  * f = min(1, (r_k / r)^2), which brings the density down to k / (pi r^2)
  * where it was above. The choice is a hash of the photon's index, so it is
  * a function of the map alone. A photon not stored hands its power, in
- * equal shares, to the stored photons among its k nearest (if none is, it
- * is stored): the total power is unchanged but for rounding and the
+ * equal shares, to the stored photons among its k nearest, or if there are
+ * none among its 4k or 16k nearest (if none is, it is stored): the total power is unchanged but for rounding and the
  * records' power encoding (formats/photons.md: 2^-10 of each photon's
  * largest channel). Surfaces seen only through mirrors or glass get the
  * falloff of the nearest surface seen directly. */
