@@ -26,7 +26,7 @@ typedef struct pm_est_in {
 	int k;                     /* nearest photons per estimate */
 	int classical_norm;        /* enum pm_classical_norm */
 	double shrink;             /* the support's scale in the consistent mode
-	                            * (pm_consistent_shrink); 0 or 1: none */
+	                            * (pass.h, pm_pass_shrink); 0 or 1: none */
 } pm_est_in;
 
 typedef struct pm_estimator {

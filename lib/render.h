@@ -25,7 +25,7 @@ typedef struct pm_render_opts {
 	int k;              /* nearest photons per estimate */
 	int classical_norm; /* enum pm_classical_norm, for rows that take it; 0 is
 	                     * Jensen's k / (pi r^2) */
-	double shrink;      /* the estimates' support scale, consistent.h; 0: none */
+	double shrink;      /* the estimates' support scale, pm_pass_shrink; 0: none */
 	int spp;            /* camera samples per pixel */
 	uint64_t seed;
 	int max_depth;      /* longest camera path; 0 means 64 */
