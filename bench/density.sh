@@ -15,7 +15,7 @@
 # one thread, summed over the N passes), RMSE, relMSE, edge-band RMSE and
 # relMSE of the N-pass average against the reference. The edge band is as
 # bench/run.sh's: pixels whose compensated cube (k = 50) meets another
-# surface's plane, from one plain pass.
+# surface's plane, from one plain pass. Plots: density-SCENE.png.
 set -eu
 top=$(cd "$(dirname "$0")/.." && pwd)
 B=${1:-build}
@@ -66,4 +66,23 @@ for name in $SCENES; do
 		series "$sc" "plain-$m" "$ref" "$mask" "$m" >/dev/null
 	done
 done
+# density-SCENE.png: relMSE against photons stored, plain maps as a line,
+# thinned ones as points
+if command -v gnuplot >/dev/null; then
+	for name in $SCENES; do
+		awk -F'\t' -v s="$name" '$1 == s && $2 ~ /^plain/' "$out" | sort -n -k3 >"$tmp/plain.tsv"
+		awk -F'\t' -v s="$name" '$1 == s && $2 ~ /^density/' "$out" >"$tmp/dens.tsv"
+		gnuplot <<PLOT
+set terminal pngcairo size 640,420
+set output "$res/density-$name.png"
+set title "$name: relMSE of $N passes against photons stored\\n$EST, k = $K; thinned from $PHOTONS photons"
+set xlabel "photons stored a pass"
+set ylabel "relMSE"
+set logscale x
+plot "$tmp/plain.tsv" using 3:7 with linespoints title "plain maps", \
+	"$tmp/dens.tsv" using 3:7:2 with labels point pt 7 offset 1,1 notitle, \
+	"$tmp/dens.tsv" using 3:7 with points pt 7 title "pm-build --density (C)"
+PLOT
+	done
+fi
 echo "density: wrote $out" >&2
