@@ -22,9 +22,9 @@ static const char usage[] =
 enum { DENSITY = OPT_LONG, DENSITY_PIXELS, DENSITY_K };
 
 static const opt opts[] = {
-	{ DENSITY, "density", "SCENE", "density control (Suykens & Willems 2000): store photons only "
-	  "where the map is denser than K photons in C pixel footprints of SCENE's camera, handing "
-	  "the others' power to their stored neighbours (see pm-build(1))", "off", 0 },
+	{ DENSITY, "density", "SCENE", "density control (Suykens & Willems 2000): thin the map where "
+	  "it holds more than K photons in C pixel footprints of SCENE's camera, the dropped photons "
+	  "handing their power to stored neighbours (see pm-build(1))", "off", 0 },
 	{ DENSITY_PIXELS, "density-pixels", "C", "--density's smallest support, in pixel footprints", "2", 0 },
 	{ DENSITY_K, "density-k", "K", "--density's photons per estimate (pm-render -k)", "50", 0 },
 	{ 'f', "force", NULL, "merge inputs whose light_hash or time differ", "refuse", 0 },
@@ -72,6 +72,7 @@ main(int argc, char **argv)
 	char **in, qa[600], qb[600];
 	int force = 0, quiet = 0, nin, c;
 	const char *dscene = NULL;
+	int dgiven = 0;
 	pm_density_opts dopt = {.k = 50, .pixels = 2};
 	pm_photons acc;
 	pm_error err;
@@ -82,13 +83,21 @@ main(int argc, char **argv)
 		switch (c) {
 		case 'f': force = 1; break;
 		case DENSITY: dscene = optarg; break;
-		case DENSITY_PIXELS: dopt.pixels = parse_real(optarg, 1e-3, 1e6, "--density-pixels", usage); break;
-		case DENSITY_K: dopt.k = (int)parse_int(optarg, 1, 100000, "--density-k", usage); break;
+		case DENSITY_PIXELS:
+			dopt.pixels = parse_real(optarg, 1e-3, 1e6, "--density-pixels", usage);
+			dgiven = 1;
+			break;
+		case DENSITY_K:
+			dopt.k = (int)parse_int(optarg, 1, 100000, "--density-k", usage);
+			dgiven = 1;
+			break;
 		case 'j': set_threads((int)parse_int(optarg, 0, 4096, "-j", usage)); break;
 		case 'o': out = optarg; break;
 		case 'q': quiet = 1; break;
 		}
 	}
+	if (!dscene && dgiven)
+		usage_err(usage, "--density-pixels and --density-k need --density SCENE");
 	in = argv + optind;
 	nin = argc - optind;
 	if (nin == 0) {

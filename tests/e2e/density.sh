@@ -44,6 +44,8 @@ check "and off for a plain map" grep -qx 'off' attr.txt
 expect_fail "--density with another scene is refused" 1 "not the photons' scene" \
 	pm-build --density "$PM_TOP/tests/scenes/mirror.pms" shot.pm -o x.pm
 check "no output then" test ! -e x.pm
+expect_fail "--density-pixels without --density is refused" 2 "need --density SCENE" \
+	pm-build --density-pixels 3 shot.pm -o x.pm
 sed 's/^density=off$/density=lots/' plain.pm >bad.pm
 expect_fail "a bad density key is refused with the file and line" 1 \
 	"bad.pm.*line 14: bad density 'lots'" pm-build bad.pm -o x.pm
