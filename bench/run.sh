@@ -51,14 +51,21 @@ add() { awk -F'\t' -v p="$1" 'NF == 2 { print p "." $1 "\t" $2 }' "$2" >>"$micro
 
 if [ "$mode" = quick ]; then
 	KNN_Q=160000 RUNS=3 HOT_N=200000 SHOOT_N=500000
-	SWEEP_SCENES="cornell furnace" NMAX=8 PHOTONS="50000 200000" KS=50 KS_AT=
-	REF_PASSES=4 REF_SPP=256 SIZE_cornell="128 128" SIZE_room="128 96" SIZE_furnace="64 48"
+	SWEEP_SCENES="cornell caustic room furnace" NMAX=8 PHOTONS="100000" KS=50 KS_AT=
+	REF_PASSES=16 REF_SPP=256 REF_PASSES_room=64 SIZE_cornell="128 128" SIZE_caustic="128 128" SIZE_room="128 96"
+	SIZE_furnace="64 48"
 else
 	KNN_Q=1000000 RUNS=5 HOT_N=1000000 SHOOT_N=1000000
-	SWEEP_SCENES="cornell room furnace" NMAX=64 PHOTONS="50000 200000 1000000" KS="25 100" KS_AT=200000
-	REF_PASSES=8 REF_SPP=512 SIZE_cornell="256 256" SIZE_room="256 192" SIZE_furnace="128 96"
+	SWEEP_SCENES="cornell caustic room furnace" NMAX=64 PHOTONS="100000 400000" KS="25 100" KS_AT=200000
+	REF_PASSES=32 REF_SPP=1024 REF_PASSES_room=128 SIZE_cornell="256 256" SIZE_caustic="256 256" SIZE_room="256 192"
+	SIZE_furnace="128 96"
 fi
 SPP=4 BASE_K=50
+# The speed-against-error sweep's view passes: pm-render's defaults, the
+# settings with the best measured efficiency (BENCHMARKS.md, "Levers"); the
+# path tracer, the competitor, with its own best (one shadow ray per vertex;
+# 64 camera samples per pass pair).
+VIEW_ARGS="-p 16 -l 4" PATH_ARGS="-p 64 -l 1"
 
 # ---- the scenes, copied with their meshes so the camera size can change --
 mkscene() { # NAME SRC_DIR SRC_FILE W H
@@ -204,17 +211,20 @@ rm -rf "$pw"
 
 # ---- speed against error ---------------------------------------------------
 runs=$res/runs.tsv
-printf 'scene\test\tphotons\tk\tpasses\ttime_s\trmse\trelmse\tmse\tpassvar\trelpassvar\trefvar\trelrefvar\tedge_rmse\tedge_relmse\tedge_mse\tedge_passvar\tedge_refvar\tpixels\tedge_pixels\n' >"$runs"
+printf 'scene\test\tphotons\tk\tpasses\ttime_s\trmse\trelmse\tmse\tpassvar\trelpassvar\trefvar\trelrefvar\tedge_rmse\tedge_relmse\tedge_mse\tedge_passvar\tedge_refvar\tpixels\tedge_pixels\tedge_relrefvar\tedge_relpassvar\trest_relmse\trest_relpassvar\trest_relrefvar\n' >"$runs"
 
 # reference NAME SCENE: prints the reference image path (made once, cached by
 # the scene's bytes, its meshes' and the reference settings)
+# The room's reference takes more passes: the path tracer's noise there is
+# about 10 times the Cornell box's at equal time.
 reference() {
-	key=$(cat "$(dirname "$2")"/* | cksum | awk -v s="$REF_PASSES-$REF_SPP" '{ print $1 "-" s }')
+	eval "np=\${REF_PASSES_$1:-$REF_PASSES}"
+	key=$(cat "$(dirname "$2")"/* | cksum | awk -v s="$np-$REF_SPP" '{ print $1 "-" s }')
 	r=$cache/ref/$1-$key.exr
 	if [ ! -s "$r" ]; then
-		log "reference for $1: $REF_PASSES path-traced passes of $REF_SPP spp (cached in $cache/ref)"
+		log "reference for $1: $np path-traced passes of $REF_SPP spp (cached in $cache/ref)"
 		mkdir -p "$cache/ref" "$tmp/ref"
-		seq 1 "$REF_PASSES" | xargs -P "$jobs" -I{} "$bin/pm-render" -j 1 -e path -p "$REF_SPP" \
+		seq 1 "$np" | xargs -P "$jobs" -I{} "$bin/pm-render" -j 1 -e path -p "$REF_SPP" \
 			-s "1000{}" "$2" -o "$tmp/ref/{}.exr" 2>/dev/null
 		"$bin/pm-average" "$tmp/ref"/*.exr -o "$r.tmp.exr"
 		mv "$r.tmp.exr" "$r"
@@ -232,10 +242,14 @@ series() {
 	log "$1: $3, $4 photons, k = $5, $NMAX pass pairs"
 	seq 1 "$NMAX" | xargs -P "$jobs" -I{} sh -c '
 		a=$(date +%s.%N)
-		"$1/pm-shoot" -q -j 1 -n "$4" -s {} "$2" | "$1/pm-build" -q -j 1 |
-			"$1/pm-render" -j 1 -e "$5" -k "$6" -p "$7" -s {} "$2" - -o "$3/pass-{}.exr" 2>/dev/null
+		if [ "$5" = path ]; then
+			"$1/pm-render" -j 1 -e path $8 -s {} "$2" -o "$3/pass-{}.exr" 2>/dev/null
+		else
+			"$1/pm-shoot" -q -j 1 -n "$4" -s {} "$2" | "$1/pm-build" -q -j 1 |
+				"$1/pm-render" -j 1 -e "$5" -k "$6" $7 -s {} "$2" - -o "$3/pass-{}.exr" 2>/dev/null
+		fi
 		b=$(date +%s.%N)
-		echo "$a $b" | awk "{ print \$2 - \$1 }" >"$3/{}.t"' sh "$bin" "$2" "$d" "$4" "$3" "$5" "$SPP"
+		echo "$a $b" | awk "{ print \$2 - \$1 }" >"$3/{}.t"' sh "$bin" "$2" "$d" "$4" "$3" "$5" "$VIEW_ARGS" "$PATH_ARGS"
 	n=1
 	while [ $n -le "$NMAX" ]; do
 		files=$(seq 1 $n | sed "s|.*|$d/pass-&.exr|")
@@ -248,9 +262,11 @@ series() {
 		all=$("$bb/errsplit" $6 "$d/avg.exr" $7)
 		# shellcheck disable=SC2086
 		edge=$("$bb/errsplit" -m "$8" -c edge $6 "$d/avg.exr" $7)
+		# shellcheck disable=SC2086
+		rest=$("$bb/errsplit" -m "$8" -c '!edge' $6 "$d/avg.exr" $7)
 		# errsplit: pixels mse rmse relmse passvar relpassvar refvar relrefvar
-		printf '%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\n' "$1" "$3" "$4" "$5" "$n" "$t" "$all" "$edge" |
-			awk -F'\t' -v OFS='\t' '{ print $1,$2,$3,$4,$5,$6,$9,$10,$8,$11,$12,$13,$14,$17,$18,$16,$19,$21,$7,$15 }' >>"$runs"
+		printf '%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\n' "$1" "$3" "$4" "$5" "$n" "$t" "$all" "$edge" "$rest" |
+			awk -F'\t' -v OFS='\t' '{ print $1,$2,$3,$4,$5,$6,$9,$10,$8,$11,$12,$13,$14,$17,$18,$16,$19,$21,$7,$15,$22,$20,$26,$28,$30 }' >>"$runs"
 		n=$((n * 2))
 	done
 	rm -rf "$d"
@@ -264,7 +280,8 @@ for name in $SWEEP_SCENES; do
 	set -- $PHOTONS
 	mask=$cache/mask-$name.exr
 	"$bin/pm-shoot" -q -n "$1" -s 999 "$sc" | "$bin/pm-build" -q |
-		"$bin/pm-render" -k $BASE_K -p $SPP -s 999 "$sc" - -o "$mask" 2>/dev/null
+		"$bin/pm-render" -k $BASE_K $VIEW_ARGS -s 999 "$sc" - -o "$mask" 2>/dev/null
+	series "$name" "$sc" path 0 0 "$refargs" "$refimg" "$mask"
 	for P in $PHOTONS; do
 		for est in classical compensated; do
 			series "$name" "$sc" "$est" "$P" "$BASE_K" "$refargs" "$refimg" "$mask"
@@ -278,6 +295,49 @@ for name in $SWEEP_SCENES; do
 		done
 	fi
 done
+printf 'sweep.view_args\t%s\nsweep.path_args\t%s\n' "$VIEW_ARGS" "$PATH_ARGS" >>"$micro"
+
+# ---- levers: one view-pass setting at a time, side by side -----------------
+# lever SCENE LABEL PHOTONS ARGS: LEVER_N pass pairs (PHOTONS = 0: the path
+# tracer), their core-seconds, relMSE less the reference's, efficiency.
+levers=$res/levers.tsv
+printf 'scene\tlabel\tphotons\targs\tpasses\ttime_s\trelmse\tefficiency\n' >"$levers"
+LEVER_N=8
+lever() {
+	d=$tmp/lv
+	rm -rf "$d"
+	mkdir -p "$d"
+	sc=$(scene_of "$1")
+	ref=$(reference "$1" "$sc")
+	log "lever: $1, $2 ($4)"
+	seq 1 "$LEVER_N" | xargs -P "$jobs" -I{} sh -c '
+		a=$(date +%s.%N)
+		if [ "$4" = 0 ]; then
+			"$1/pm-render" -j 1 -e path $5 -s {} "$2" -o "$3/pass-{}.exr" 2>/dev/null
+		else
+			"$1/pm-shoot" -q -j 1 -n "$4" -s {} "$2" | "$1/pm-build" -q -j 1 |
+				"$1/pm-render" -j 1 -k 50 $5 -s {} "$2" - -o "$3/pass-{}.exr" 2>/dev/null
+		fi
+		b=$(date +%s.%N)
+		echo "$a $b" | awk "{ print \$2 - \$1 }" >"$3/{}.t"' sh "$bin" "$sc" "$d" "$3" "$4"
+	"$bin/pm-average" "$d"/pass-*.exr -o "$d/avg.exr"
+	t=$(cat "$d"/*.t | awk '{ s += $1 } END { printf "%.3f", s }')
+	"$bb/errsplit" "$d/avg.exr" "$ref" | awk -F'\t' -v OFS='\t' -v sc="$1" -v l="$2" -v p="$3" -v a="$4" \
+		-v n="$LEVER_N" -v t="$t" '{ r = $4 - $8; if (r < 1e-9) r = 1e-9; print sc, l, p, a, n, t, r, 1 / (r * t) }' >>"$levers"
+	rm -rf "$d"
+}
+lever cornell "path tracer, 1 shadow ray per vertex" 0 "-p 64 -l 1"
+lever cornell "path tracer, 4 shadow rays at the first vertex" 0 "-p 64 -l 4"
+lever cornell "pm 0.13's view pass: -p 4, 1 shadow ray, an estimate per sample" 100000 "-p 4 -l 1 --estimates sample"
+lever cornell "... the estimate once per pixel" 100000 "-p 4 -l 1 --estimates pixel"
+lever cornell "... and 4 shadow rays per sample" 100000 "-p 4 -l 4"
+lever cornell "... and 16 samples per pixel (the default)" 100000 "-p 16 -l 4"
+lever cornell "32 samples, 1 shadow ray" 100000 "-p 32 -l 1"
+lever cornell "the default, k = 100 with twice the photons" 200000 "-p 16 -l 4 -k 100"
+lever room "path tracer" 0 "-p 64 -l 1"
+lever room "the default (-p 16 -l 4)" 100000 "-p 16 -l 4"
+lever room "-p 4 -l 4" 100000 "-p 4 -l 4"
+lever room "-p 64 -l 4" 100000 "-p 64 -l 4"
 t_end=$(now)
 printf 'machine.load_end\t%s\n' "$(cut -d' ' -f1-3 /proc/loadavg)" >>"$micro"
 printf 'machine.bench_wall_s\t%s\n' "$(fsub "$t_end" "$t_start")" >>"$micro"

@@ -2,7 +2,7 @@
 # passes.sh — N pass pairs of a scene (light pass | pm-build | view pass),
 # run in parallel with xargs -P, then averaged and tone-mapped.
 # Usage: examples/passes.sh SCENE NAME   (settings from the environment:)
-#   N=8 passes, PHOTONS=200000 per pass, SPP=4, K=50, EST=compensated,
+#   N=8 passes, PHOTONS=200000 per pass, SPP=16, K=50, EST=compensated,
 #   P=cores in parallel, OUT=examples/out, PM_BIN=build/bin
 # Pass i of N is examples/fanout/pass.sh i N: -P i/N for both its light pass
 # and its view pass (seed and shutter time derived from i and N; README,
@@ -12,7 +12,7 @@ set -eu
 top=$(cd "$(dirname "$0")/.." && pwd)
 scene=$(cd "$(dirname "$1")" && pwd)/$(basename "$1") name=$2
 export PM_BIN="${PM_BIN:-$top/build/bin}"
-export N="${N:-8}" PHOTONS="${PHOTONS:-200000}" SPP="${SPP:-4}" K="${K:-50}" EST="${EST:-compensated}"
+export N="${N:-8}" PHOTONS="${PHOTONS:-200000}" SPP="${SPP:-16}" K="${K:-50}" EST="${EST:-compensated}"
 P=${P:-$(nproc)}
 out=${OUT:-$top/examples/out}
 mkdir -p "$out/$name"

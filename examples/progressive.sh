@@ -11,7 +11,7 @@
 #   0.01 for 1%.
 # Settings from the environment: FIRST=2 passes in round 1 (at least 2: one
 #   pass has no spread to estimate from), ROUNDS=8 at most, PHOTONS=100000
-#   per pass, SPP=4, K=50, EST=compensated, P=cores in parallel,
+#   per pass, SPP=16, K=50, EST=compensated, P=cores in parallel,
 #   OUT=examples/out/progressive, PM_BIN=build/bin.
 # Round r runs passes -P 1/n … n/n with n = FIRST·2^(r−1): each round is a
 # complete stratified set of shutter times, and its seeds differ from every
@@ -36,7 +36,7 @@ bin=${PM_BIN:-$top/build/bin}
 FIRST=${FIRST:-2} ROUNDS=${ROUNDS:-8} P=${P:-$(nproc)}
 out=${OUT:-$top/examples/out/progressive}
 [ "$FIRST" -ge 2 ] || { echo "progressive.sh: FIRST must be at least 2" >&2; exit 2; }
-export PM_BIN="$bin" PHOTONS=${PHOTONS:-100000} SPP=${SPP:-4} K=${K:-50} EST=${EST:-compensated}
+export PM_BIN="$bin" PHOTONS=${PHOTONS:-100000} SPP=${SPP:-16} K=${K:-50} EST=${EST:-compensated}
 . "$top/examples/fanout/progress.sh"
 mkdir -p "$out"
 rm -f "$out/image.exr"

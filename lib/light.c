@@ -1,6 +1,7 @@
 /* light.c — emitters and their sampling (see light.h). */
 #include "light.h"
 
+#include <float.h>
 #include <math.h>
 #include <stdlib.h>
 
@@ -152,9 +153,17 @@ int
 pm_lights_sample(const pm_lights *L, pm_vec3 x, pm_rng *r, pm_vec3 *wi, float *dist,
                  pm_vec3 *li, float *spdf)
 {
+	float u0 = pm_rng_f(r), u1 = pm_rng_f(r), u2 = pm_rng_f(r);
+
+	return pm_lights_sample_u(L, x, u0, u1, u2, wi, dist, li, spdf);
+}
+
+int
+pm_lights_sample_u(const pm_lights *L, pm_vec3 x, float u0, float u1, float u2, pm_vec3 *wi,
+                   float *dist, pm_vec3 *li, float *spdf)
+{
 	float pdf;
-	const pm_light *l = &L->l[lights_pick(L, pm_rng_f(r), &pdf)];
-	float u1 = pm_rng_f(r), u2 = pm_rng_f(r);
+	const pm_light *l = &L->l[lights_pick(L, u0, &pdf)];
 	pm_vec3 p, v;
 	float d2, d, cl;
 
@@ -200,4 +209,45 @@ pm_lights_pdf(const pm_lights *L, uint32_t tri, pm_vec3 x, pm_vec3 p)
 	if (!(cl > 0) || !(l->area > 0))
 		return 0;
 	return (L->cdf[i + 1] - L->cdf[i]) * d2 / (cl * l->area);
+}
+
+int
+pm_lights_first(const pm_lights *L, pm_vec3 o, pm_vec3 d, float *t, int *light)
+{
+	int ntri = 0, best = -1;
+	float tb = FLT_MAX;
+
+	for (int i = 0; i < L->n; i++)
+		ntri += L->l[i].tri >= 0;
+	if (ntri > PM_LIGHTS_SCAN)
+		return -1;
+	/* Moller & Trumbore (1997), both sides. */
+	for (int i = 0; i < L->n; i++) {
+		const pm_light *l = &L->l[i];
+		if (l->tri < 0)
+			continue;
+		pm_vec3 p = pm_cross(d, l->e2);
+		float det = pm_dot(l->e1, p);
+		if (det == 0.0f)
+			continue;
+		float inv = 1.0f / det;
+		pm_vec3 s = pm_sub(o, l->p0);
+		float u = pm_dot(s, p) * inv;
+		if (u < 0.0f || u > 1.0f)
+			continue;
+		pm_vec3 q = pm_cross(s, l->e1);
+		float v = pm_dot(d, q) * inv;
+		if (v < 0.0f || u + v > 1.0f)
+			continue;
+		float tt = pm_dot(l->e2, q) * inv;
+		if (tt > 0.0f && tt < tb) {
+			tb = tt;
+			best = i;
+		}
+	}
+	if (best < 0)
+		return 0;
+	*t = tb;
+	*light = best;
+	return 1;
 }

@@ -52,8 +52,23 @@ void pm_lights_emit_u(const pm_lights *L, const float u[6], pm_vec3 *o, pm_vec3 
 int pm_lights_sample(const pm_lights *L, pm_vec3 x, pm_rng *r, pm_vec3 *wi, float *dist,
                      pm_vec3 *li, float *pdf);
 
+/* The same from given uniform numbers: u0 picks the light, (u1, u2) the
+ * point on it, so a caller can stratify (u1, u2) over several samples.
+ * pm_lights_sample draws u0, u1, u2 in that order. */
+int pm_lights_sample_u(const pm_lights *L, pm_vec3 x, float u0, float u1, float u2, pm_vec3 *wi,
+                       float *dist, pm_vec3 *li, float *pdf);
+
 /* Solid-angle density with which pm_lights_sample, called at x, would pick
  * point p on scene triangle tri (0 if tri does not emit toward x). */
 float pm_lights_pdf(const pm_lights *L, uint32_t tri, pm_vec3 x, pm_vec3 p);
+
+/* The nearest emitting triangle along the ray o + t d, t > 0 (either side),
+ * found by testing each: *t and the light's index in L->l. Returns 1 if one
+ * is hit, 0 if none, -1 if the scene has more than PM_LIGHTS_SCAN emitting
+ * triangles (then the caller should trace the ray through the scene). The
+ * view pass asks this before spending a full ray on a BSDF sample that can
+ * only matter if it reaches an emitter. */
+#define PM_LIGHTS_SCAN 64
+int pm_lights_first(const pm_lights *L, pm_vec3 o, pm_vec3 d, float *t, int *light);
 
 #endif

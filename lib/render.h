@@ -27,6 +27,10 @@ typedef struct pm_render_opts {
 	                     * Jensen's k / (pi r^2) */
 	double shrink;      /* the estimates' support scale, pm_pass_shrink; 0: none */
 	int spp;            /* camera samples per pixel */
+	int light_samples;  /* shadow rays at a path's first hit and at its end
+	                     * (the photon-surface hit); 0 means 1 */
+	int estimate_once;  /* 1: a pixel's first-hit photon estimate is taken
+	                     * once per polygon it sees, not per camera sample */
 	uint64_t seed;
 	int max_depth;      /* longest camera path; 0 means 64 */
 	pm_progress_fn *progress;  /* if set, called with (rows done, rows) */

@@ -40,7 +40,7 @@ static const tool average = {
  * every input lacks it). */
 static const char *const agreed[] = {
 	"pm.scene_hash", "pm.estimator", "pm.k", "pm.spp", "pm.photons", "pm.time",
-	"pm.consistent", "pm.light_paths", "pm.density",
+	"pm.light_samples", "pm.estimates", "pm.consistent", "pm.light_paths", "pm.density",
 };
 enum { NAGREED = sizeof agreed / sizeof agreed[0] };
 

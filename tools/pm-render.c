@@ -36,7 +36,8 @@ make_usage(void)
 	}
 	snprintf(usage, sizeof usage,
 	         "pm-render SCENE [MAP|-] [-e %s] [-k K] [--classical-norm k|k-1] [-p SAMPLES] "
-	         "[-P I/N] [--consistent ALPHA] [-s SEED] [-t TIME] [-j THREADS] [-q] [--force] -o OUT.exr", names);
+	         "[-l N] [--estimates pixel|sample] [-P I/N] [--consistent ALPHA] [-s SEED] [-t TIME] "
+	         "[-j THREADS] [-q] [--force] -o OUT.exr", names);
 	n = (size_t)snprintf(est_help, sizeof est_help, "estimator:");
 	for (const pm_estimator *e = pm_estimators; e->name && n < sizeof est_help; e++)
 		n += (size_t)snprintf(est_help + n, sizeof est_help - n, " %s: %s;", e->name, e->help);
@@ -44,7 +45,7 @@ make_usage(void)
 		est_help[n - 1] = 0;
 }
 
-enum { FORCE = OPT_LONG, MAX_SAMPLES, CLASSICAL_NORM, CONSISTENT };
+enum { FORCE = OPT_LONG, MAX_SAMPLES, CLASSICAL_NORM, ESTIMATES, CONSISTENT };
 
 static const opt opts[] = {
 	{ 'e', "estimator", "EST", est_help, est_default, 0 },
@@ -56,7 +57,13 @@ static const opt opts[] = {
 	  "bright by 1/(k-1)); k-1 needs -e classical and -k 2 or more", "k", 0 },
 	{ 'o', "output", "OUT.exr", "output image, - for stdout (to pipe into pm-tonemap - or "
 	  "pm-average -)", "none: required", 0 },
-	{ 'p', "samples", "SAMPLES", "camera samples per pixel", "4", 0 },
+	{ 'p', "samples", "SAMPLES", "camera samples per pixel", "16", 0 },
+	{ 'l', "light-samples", "N", "shadow rays per camera sample where its direct light is "
+	  "taken first and where it meets the photon estimate; cheap next to the estimate, "
+	  "they take the noise out of soft shadows", "4; 1 with -e path", 0 },
+	{ ESTIMATES, "estimates", "pixel|sample", "the photon estimate at a first hit: once per "
+	  "pixel and polygon seen (pixel), or at every camera sample (sample, up to -p "
+	  "times the cost); the expected image is the same", "pixel", 0 },
 	{ MAX_SAMPLES, "max-samples", "N", "refuse -p above N, against typos", "65536", 0 },
 	{ 'P', "pass", "I/N", "pass I of N: seed and time derived from I and N, as pm-shoot -P "
 	  "does (see pm-render(1)); -s and -t override them", "no pass", 0 },
@@ -117,7 +124,8 @@ is_photon_file(const char *path)
 int
 main(int argc, char **argv)
 {
-	pm_render_opts o = {.estimator = pm_estimator_find(est_default), .k = 50, .spp = 4};
+	pm_render_opts o = {.estimator = pm_estimator_find(est_default), .k = 50, .spp = 16,
+	                    .estimate_once = 1};
 	const char *out = NULL, *mapname = NULL;
 	int c, threads = 0, force = 0, have_time = 0, have_seed = 0, quiet = 0, max_spp = 65536;
 	uint32_t pass_i = 0, pass_n = 0;
@@ -153,6 +161,13 @@ main(int argc, char **argv)
 				usage_err(usage, "--classical-norm: unknown normalisation '%s' (k or k-1)", optarg);
 			break;
 		case MAX_SAMPLES: max_spp = (int)parse_int(optarg, 1, 1 << 30, "--max-samples", usage); break;
+		case 'l': o.light_samples = (int)parse_int(optarg, 1, 4096, "-l", usage); break;
+		case ESTIMATES:
+			if (!strcmp(optarg, "pixel") || !strcmp(optarg, "sample"))
+				o.estimate_once = !strcmp(optarg, "pixel");
+			else
+				usage_err(usage, "--estimates: '%s' is neither pixel nor sample", optarg);
+			break;
 		case 'p': o.spp = (int)parse_int(optarg, 1, 1 << 30, "-p", usage); break;
 		case 'P':
 			if (pm_pass_parse(optarg, &pass_i, &pass_n, &err) != 0)
@@ -189,6 +204,11 @@ main(int argc, char **argv)
 		          o.estimator->name);
 	if (alpha > 0)
 		o.shrink = pm_pass_shrink(pass_i, alpha);
+	/* Measured (BENCHMARKS.md, "Levers"): next to a photon estimate four
+	 * shadow rays pay for themselves; in the path tracer, whose every
+	 * camera sample already costs a whole path, one does. */
+	if (!o.light_samples)
+		o.light_samples = o.estimator->estimate && (o.estimator->needs & PM_NEEDS_MAP) ? 4 : 1;
 	check_output(usage, out, OUT_EXR, argv + optind, argc - optind);
 	pm_pass_apply(pass_i, pass_n, &o.seed, &have_seed, &time, &have_time);
 	set_threads(threads);
@@ -238,6 +258,9 @@ main(int argc, char **argv)
 	setattr(&img, "pm.passes", "1");
 	snprintf(buf, sizeof buf, "%d", o.spp);
 	setattr(&img, "pm.spp", buf);
+	snprintf(buf, sizeof buf, "%d", o.light_samples);
+	setattr(&img, "pm.light_samples", buf);
+	setattr(&img, "pm.estimates", o.estimate_once ? "pixel" : "sample");
 	snprintf(buf, sizeof buf, "%" PRIu64, map.h.count);
 	setattr(&img, "pm.photons", buf);
 	snprintf(buf, sizeof buf, "%" PRIu64, map.h.emitted);

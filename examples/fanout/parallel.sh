@@ -22,7 +22,7 @@ bin=${PM_BIN:+$PM_BIN/}
 . "$here/progress.sh"
 mkdir -p "$2" && cd "$2"
 progress_begin "$N" parallel.sh
-env="PHOTONS=${PHOTONS:-20000} SPP=${SPP:-4} K=${K:-50} EST=${EST:-compensated} PM_BIN=${PM_BIN:-} PM_PROGRESS_LOG='$PM_PROGRESS_LOG'"
+env="PHOTONS=${PHOTONS:-20000} SPP=${SPP:-16} K=${K:-50} EST=${EST:-compensated} PM_BIN=${PM_BIN:-} PM_PROGRESS_LOG='$PM_PROGRESS_LOG'"
 seq 1 "$N" | parallel --will-cite --halt now,fail=1 -j "$P" -S "$HOSTS" --workdir "$PWD" \
 	"$env sh '$here/pass.sh' {} $N '$scene'"
 progress_end

@@ -4,7 +4,7 @@
 # so they derive the same seed and shutter time from I and N (README.md,
 # "Running at scale"), whoever runs them, wherever and in whatever order.
 # Usage: pass.sh I N SCENE
-# Settings from the environment: PHOTONS=20000 SPP=4 K=50 EST=compensated;
+# Settings from the environment: PHOTONS=20000 SPP=16 K=50 EST=compensated;
 # PM_BIN, the directory of the pm programs (default: found on PATH);
 # PM_PROGRESS_LOG, a file to append a line to when the pass is written
 # (progress.sh counts them; unwritable, it is skipped).
@@ -13,7 +13,7 @@ i=$1 n=$2 scene=$3
 bin=${PM_BIN:+$PM_BIN/}
 "${bin}pm-shoot" -q -j 1 -n "${PHOTONS:-20000}" -P "$i/$n" "$scene" |
 	"${bin}pm-build" -q -j 1 |
-	"${bin}pm-render" -q -j 1 -e "${EST:-compensated}" -k "${K:-50}" -p "${SPP:-4}" \
+	"${bin}pm-render" -q -j 1 -e "${EST:-compensated}" -k "${K:-50}" -p "${SPP:-16}" \
 		-P "$i/$n" "$scene" - -o "pass-$i.exr"
 if [ -n "${PM_PROGRESS_LOG:-}" ]; then
 	{ echo "$i" >>"$PM_PROGRESS_LOG"; } 2>/dev/null || :

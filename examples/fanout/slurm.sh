@@ -54,7 +54,7 @@ preamble() {
 	echo "#SBATCH --cpus-per-task=${CPUS:-1}"
 	echo "# Array task I runs pass I of $N (pass.sh writes pass-I.exr in $dir)."
 	echo "export PM_BIN=$(q "${PM_BIN:-}")"
-	echo "export PHOTONS=$(q "${PHOTONS:-20000}") SPP=$(q "${SPP:-4}") K=$(q "${K:-50}") EST=$(q "${EST:-compensated}")"
+	echo "export PHOTONS=$(q "${PHOTONS:-20000}") SPP=$(q "${SPP:-16}") K=$(q "${K:-50}") EST=$(q "${EST:-compensated}")"
 	echo "exec sh $(q "$here/pass.sh") \"\$SLURM_ARRAY_TASK_ID\" $N $(q "$scene")"
 } >"$dir/pass.sbatch"
 

@@ -8,7 +8,7 @@ set -eu
 here=$(cd "$(dirname "$0")" && pwd)
 top=$(cd "$here/../.." && pwd)
 bin=${PM_BIN:-$top/build/bin}
-N=${N:-8} PHOTONS=${PHOTONS:-200000} SPP=${SPP:-4} K=${K:-50}
+N=${N:-8} PHOTONS=${PHOTONS:-200000} SPP=${SPP:-16} K=${K:-50}
 P=${P:-$(nproc)}
 out=${OUT:-$top/examples/out}
 scene=$here/room.pms

@@ -22,13 +22,7 @@ num_near "point light on a floor: rho Phi / (4 pi^2 H^2)" "$(kv p.txt mean)" "$w
 
 # A 1 x 1 emitter of radiance 3 facing down at height 0.5; the camera sits
 # just below it and looks down through nothing but air.
-cat >area.pms <<'SCENE'
-camera eye 0 0.2 0  look 0 0 0  up 0 0 -1  fov 2  size 8 8
-material floor diffuse albedo 0.5 0.5 0.5
-material lamp diffuse albedo 0 0 0 emit 3 3 3
-quad floor -10 0 -10  -10 0 10  10 0 10  10 0 -10
-quad lamp -0.5 0.5 -0.5  0.5 0.5 -0.5  0.5 0.5 0.5  -0.5 0.5 0.5
-SCENE
+cp "$PM_TOP/tests/scenes/area.pms" .
 pm-render -e path -p 256 area.pms -o area.exr 2>/dev/null
 "$tools/exrstat" --window 3,3,5,5 area.exr >a.txt
 want=$(awk 'BEGIN { pi = 3.14159265358979; A = 1; B = 1   # a = b = 0.5, H = 0.5
