@@ -107,9 +107,17 @@ fresnel(float cos_i, float eta, float *cos_t)
 int
 pm_bsdf_sample(const pm_material *m, pm_vec3 ng, pm_vec3 wo, pm_rng *r, pm_scatter *s)
 {
+	float u1 = pm_rng_f(r), u2 = pm_rng_f(r), u3 = pm_rng_f(r);
+
+	return pm_bsdf_sample_u(m, ng, wo, u1, u2, u3, s);
+}
+
+int
+pm_bsdf_sample_u(const pm_material *m, pm_vec3 ng, pm_vec3 wo, float u1, float u2, float u3,
+                 pm_scatter *s)
+{
 	float co = pm_dot(wo, ng);
 	pm_vec3 n = co >= 0 ? ng : pm_neg(ng);
-	float u1 = pm_rng_f(r), u2 = pm_rng_f(r), u3 = pm_rng_f(r);
 
 	s->delta = 0;
 	s->pdf = 0;

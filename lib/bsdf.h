@@ -28,6 +28,11 @@ typedef struct pm_scatter {
 int pm_bsdf_sample(const pm_material *m, pm_vec3 ng, pm_vec3 wo, pm_rng *r,
                    pm_scatter *s);
 
+/* The same from given uniforms in [0, 1): u1, u2 the direction, u3 the
+ * lobe (glossy); glass takes its choice from u1. */
+int pm_bsdf_sample_u(const pm_material *m, pm_vec3 ng, pm_vec3 wo, float u1, float u2,
+                     float u3, pm_scatter *s);
+
 /* Solid-angle density with which pm_bsdf_sample picks wi given wo, for
  * multiple importance sampling (0 for mirror and glass). n on wo's side. */
 float pm_bsdf_pdf(const pm_material *m, pm_vec3 n, pm_vec3 wi, pm_vec3 wo);

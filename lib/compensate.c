@@ -720,11 +720,13 @@ facing(const cpoly *P, pm_dvec3 psi, double c, pm_dvec3 n)
 	return dmax(0, pm_ddot(psi, P->Ne));
 }
 
-void
-pm_comp_weights(const pm_polyindex *pi, pm_vec3 x, pm_vec3 n,
-                const pm_vec3 *pos, const pm_vec3 *dir, int m,
-                int complete, pm_comp_scratch *sc, double *w,
-                pm_comp_stats *st)
+/* pm_comp_weights, or with hfix > 0 (pm_comp_weights_cube) the open cube
+ * of that half-size. */
+static void
+weights(const pm_polyindex *pi, pm_vec3 x, pm_vec3 n,
+        const pm_vec3 *pos, const pm_vec3 *dir, int m,
+        int complete, double hfix, pm_comp_scratch *sc, double *w,
+        pm_comp_stats *st)
 {
 	pm_comp_stats z = {0};
 	visit_ctx q = {0};
@@ -757,9 +759,12 @@ pm_comp_weights(const pm_polyindex *pi, pm_vec3 x, pm_vec3 n,
 	/* The boundary shell: the photons at the largest distance, chained down
 	 * through gaps of at most tau. Every photon nearer than the shell is
 	 * certainly in the set; those in it may be only some of their kind. */
-	tau = PM_COMP_TAU_REL * hk;
-	hs = hk;
-	if (!complete) {
+	tau = PM_COMP_TAU_REL * (hfix > 0 ? hfix : hk);
+	hs = hfix > 0 ? hfix : hk;
+	if (hfix > 0) {
+		for (int i = 0; i < m; i++)
+			inner += sc->d[i] >= 0 && sc->d[i] < hs;
+	} else if (!complete) {
 		for (;;) {
 			double lo = hs - tau, nm = hs;
 			for (int i = 0; i < m; i++)
@@ -772,7 +777,7 @@ pm_comp_weights(const pm_polyindex *pi, pm_vec3 x, pm_vec3 n,
 		for (int i = 0; i < m; i++)
 			inner += sc->d[i] >= 0 && sc->d[i] < hs;
 	}
-	if (complete || inner == 0) {
+	if (hfix <= 0 && (complete || inner == 0)) {
 		z.closed = 1;
 		h = dmax(hk + tau, PM_COMP_HMIN_REL * pi->extent);
 	} else {
@@ -957,11 +962,44 @@ out:
 		*st = z;
 }
 
+void
+pm_comp_weights(const pm_polyindex *pi, pm_vec3 x, pm_vec3 n,
+                const pm_vec3 *pos, const pm_vec3 *dir, int m,
+                int complete, pm_comp_scratch *sc, double *w,
+                pm_comp_stats *st)
+{
+	weights(pi, x, n, pos, dir, m, complete, 0, sc, w, st);
+}
+
+void
+pm_comp_weights_cube(const pm_polyindex *pi, pm_vec3 x, pm_vec3 n,
+                     const pm_vec3 *pos, const pm_vec3 *dir, int m, double h,
+                     pm_comp_scratch *sc, double *w, pm_comp_stats *st)
+{
+	if (!(h > 0) || !isfinite(h)) {
+		for (int i = 0; i < (m < sc->k ? m : sc->k); i++)
+			w[i] = 0;
+		if (st)
+			*st = (pm_comp_stats){.found = m > 0 ? m : 0};
+		return;
+	}
+	weights(pi, x, n, pos, dir, m, 0, h, sc, w, st);
+}
+
 pm_vec3
 pm_estimate_compensated(const pm_polyindex *pi, const pm_photons *map,
                         pm_vec3 x, pm_vec3 n, pm_vec3 wo,
                         const pm_material *m, int k,
                         pm_comp_scratch *sc, pm_estimate_info *info)
+{
+	return pm_estimate_compensated_shrink(pi, map, x, n, wo, m, k, 1, sc, info);
+}
+
+pm_vec3
+pm_estimate_compensated_shrink(const pm_polyindex *pi, const pm_photons *map,
+                               pm_vec3 x, pm_vec3 n, pm_vec3 wo,
+                               const pm_material *m, int k, double shrink,
+                               pm_comp_scratch *sc, pm_estimate_info *info)
 {
 	pm_vec3 L = pm_v3(0, 0, 0);
 	double sum[3] = {0, 0, 0}, inv;
@@ -987,7 +1025,10 @@ pm_estimate_compensated(const pm_polyindex *pi, const pm_photons *map,
 		sc->dir[i] = pm_photon_dir(p);
 	}
 	complete = got < k || (uint64_t)got == map->h.count;
-	pm_comp_weights(pi, x, n, sc->pos, sc->dir, got, complete, sc, sc->w, &sc->last);
+	if (shrink > 0 && shrink < 1 && dfar > 0)
+		pm_comp_weights_cube(pi, x, n, sc->pos, sc->dir, got, shrink * dfar, sc, sc->w, &sc->last);
+	else
+		pm_comp_weights(pi, x, n, sc->pos, sc->dir, got, complete, sc, sc->w, &sc->last);
 	for (int i = 0; i < got; i++) {
 		if (!(sc->w[i] > 0))
 			continue;

@@ -62,6 +62,20 @@ pm_vec3 pm_estimate_compensated(const pm_polyindex *pi, const pm_photons *map,
                                 const pm_material *m, int k,
                                 pm_comp_scratch *sc, pm_estimate_info *info);
 
+/* The same in the consistent mode (pm-render --consistent): the cube of
+ * the k nearest photons, of half-size h_k, shrunk to shrink * h_k with
+ * 0 < shrink < 1 and taken as open there (pm_comp_weights_cube): only the
+ * photons strictly inside count, and the target areas are those in the
+ * smaller cube. The k-th photon lies on the larger cube's boundary, so every
+ * photon inside the smaller one is in the set, and given h_k the others are
+ * spread over the larger cube as the surfaces' photons are: on a flat,
+ * evenly lit surface the estimate is unbiased for any shrink. shrink >= 1
+ * (or <= 0) is pm_estimate_compensated. */
+pm_vec3 pm_estimate_compensated_shrink(const pm_polyindex *pi, const pm_photons *map,
+                                       pm_vec3 x, pm_vec3 n, pm_vec3 wo,
+                                       const pm_material *m, int k, double shrink,
+                                       pm_comp_scratch *sc, pm_estimate_info *info);
+
 typedef struct pm_comp_stats {
 	double h;        /* half-size of the cube used (the clipping cube) */
 	int found;       /* photons found by the search */
@@ -85,6 +99,14 @@ void pm_comp_weights(const pm_polyindex *pi, pm_vec3 x, pm_vec3 n,
                      const pm_vec3 *pos, const pm_vec3 *dir, int m,
                      int complete, pm_comp_scratch *sc, double *w,
                      pm_comp_stats *st);
+
+/* pm_comp_weights for the open cube of half-size h > 0 around x, whatever
+ * the photons' distances: those strictly inside count, the others (and
+ * polygons in the cube's face planes) do not. The caller must know that
+ * every photon strictly inside is among the m. */
+void pm_comp_weights_cube(const pm_polyindex *pi, pm_vec3 x, pm_vec3 n,
+                          const pm_vec3 *pos, const pm_vec3 *dir, int m, double h,
+                          pm_comp_scratch *sc, double *w, pm_comp_stats *st);
 
 /* The statistics of the last pm_estimate_compensated call with sc. */
 const pm_comp_stats *pm_comp_last(const pm_comp_scratch *sc);

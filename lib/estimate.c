@@ -40,6 +40,17 @@ pm_estimate_classical_norm(const pm_photons *map, pm_vec3 x, pm_vec3 n, pm_vec3 
                            const pm_material *m, int k, int norm, pm_nn *nn,
                            pm_estimate_info *info)
 {
+	return pm_estimate_classical_shrink(map, x, n, wo, m, k, norm, 1, nn, info);
+}
+
+/* The shrunk disc (shrink < 1) leaves the k-th photon outside: what it holds
+ * is the k-1 inner photons' share, and the (k-1) argument above makes it
+ * unbiased on a flat, evenly lit surface with no normalisation factor. */
+pm_vec3
+pm_estimate_classical_shrink(const pm_photons *map, pm_vec3 x, pm_vec3 n, pm_vec3 wo,
+                             const pm_material *m, int k, int norm, double shrink,
+                             pm_nn *nn, pm_estimate_info *info)
+{
 	float q[3] = {x.x, x.y, x.z}, r2 = 0;
 	pm_vec3 sum = pm_v3(0, 0, 0);
 	int got;
@@ -53,15 +64,23 @@ pm_estimate_classical_norm(const pm_photons *map, pm_vec3 x, pm_vec3 n, pm_vec3 
 	info->size = sqrtf(r2);
 	if (got == 0 || !(r2 > 0))
 		return sum;
+	if (shrink > 0 && shrink < 1) {
+		r2 = (float)((double)r2 * shrink * shrink);
+		info->size = sqrtf(r2);
+		if (!(r2 > 0))
+			return sum;
+	}
 	for (int i = 0; i < got; i++) {
 		const pm_photon *p = &map->p[nn[i].idx];
+		if (shrink > 0 && shrink < 1 && !(nn[i].d < r2))
+			continue;
 		pm_vec3 psi = pm_photon_dir(p);
 		/* Photons arriving from behind the surface carry no light to this side. */
 		if (pm_dot(psi, n) <= 0)
 			continue;
 		sum = pm_add(sum, pm_mul(pm_bsdf_eval(m, n, psi, wo), pm_photon_power(p)));
 	}
-	return pm_scale(sum, (float)(norm_factor(norm, got) /
+	return pm_scale(sum, (float)((shrink > 0 && shrink < 1 ? 1.0 : norm_factor(norm, got)) /
 	                             ((double)map->h.emitted * PM_PI * r2)));
 }
 

@@ -42,6 +42,15 @@ pm_vec3 pm_estimate_classical_norm(const pm_photons *map, pm_vec3 x, pm_vec3 n,
                                    pm_vec3 wo, const pm_material *m, int k,
                                    int norm, pm_nn *nn, pm_estimate_info *info);
 
+/* The consistent mode (pm-render --consistent): with 0 < shrink < 1 the
+ * disc of the k nearest photons, radius r, shrunk to shrink * r; the photons
+ * strictly inside it over pi (shrink r)^2, norm unused. shrink >= 1 (or
+ * <= 0) is pm_estimate_classical_norm. */
+pm_vec3 pm_estimate_classical_shrink(const pm_photons *map, pm_vec3 x, pm_vec3 n,
+                                     pm_vec3 wo, const pm_material *m, int k,
+                                     int norm, double shrink, pm_nn *nn,
+                                     pm_estimate_info *info);
+
 const char *pm_classical_norm_name(int norm);
 /* Returns the normalisation for a name ("k" or "k-1"), or -1. */
 int pm_classical_norm_parse(const char *name);

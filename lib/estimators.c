@@ -18,7 +18,8 @@ static pm_vec3
 classical(const pm_est_in *in, void *sc, pm_vec3 x, pm_vec3 n, pm_vec3 wo,
           const pm_material *m, pm_estimate_info *info)
 {
-	return pm_estimate_classical_norm(in->map, x, n, wo, m, in->k, in->classical_norm, sc, info);
+	return pm_estimate_classical_shrink(in->map, x, n, wo, m, in->k, in->classical_norm,
+	                                    in->shrink, sc, info);
 }
 
 static void *
@@ -37,7 +38,8 @@ static pm_vec3
 compensated(const pm_est_in *in, void *sc, pm_vec3 x, pm_vec3 n, pm_vec3 wo,
             const pm_material *m, pm_estimate_info *info)
 {
-	return pm_estimate_compensated(in->pi, in->map, x, n, wo, m, in->k, sc, info);
+	return pm_estimate_compensated_shrink(in->pi, in->map, x, n, wo, m, in->k, in->shrink,
+	                                      sc, info);
 }
 
 /* The polygon index of classical serves the edge layer only. */

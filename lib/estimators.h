@@ -25,6 +25,8 @@ typedef struct pm_est_in {
 	const pm_polyindex *pi;    /* NULL unless the row needs it */
 	int k;                     /* nearest photons per estimate */
 	int classical_norm;        /* enum pm_classical_norm */
+	double shrink;             /* the support's scale in the consistent mode
+	                            * (pass.h, pm_pass_shrink); 0 or 1: none */
 } pm_est_in;
 
 typedef struct pm_estimator {

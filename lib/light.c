@@ -115,9 +115,23 @@ tri_point(const pm_light *l, float u1, float u2)
 void
 pm_lights_emit(const pm_lights *L, pm_rng *r, pm_vec3 *o, pm_vec3 *d, pm_vec3 *n, pm_vec3 *power)
 {
+	float u[6], pdf;
+
+	/* The side is drawn only for two-sided lights, as it always was, so
+	 * that the pseudo-random photons stay what they were. */
+	for (int i = 0; i < 5; i++)
+		u[i] = pm_rng_f(r);
+	u[5] = L->l[lights_pick(L, u[0], &pdf)].twosided ? pm_rng_f(r) : 0;
+	pm_lights_emit_u(L, u, o, d, n, power);
+}
+
+void
+pm_lights_emit_u(const pm_lights *L, const float u[6], pm_vec3 *o, pm_vec3 *d, pm_vec3 *n,
+                 pm_vec3 *power)
+{
 	float pdf;
-	const pm_light *l = &L->l[lights_pick(L, pm_rng_f(r), &pdf)];
-	float u1 = pm_rng_f(r), u2 = pm_rng_f(r), u3 = pm_rng_f(r), u4 = pm_rng_f(r);
+	const pm_light *l = &L->l[lights_pick(L, u[0], &pdf)];
+	float u1 = u[1], u2 = u[2], u3 = u[3], u4 = u[4];
 
 	*power = pm_scale(l->power, 1.0f / pdf);
 	if (l->tri < 0) {
@@ -130,7 +144,7 @@ pm_lights_emit(const pm_lights *L, pm_rng *r, pm_vec3 *o, pm_vec3 *d, pm_vec3 *n
 	 * the flux leaving a Lambertian emitter (pi Le A in all). */
 	*o = tri_point(l, u1, u2);
 	*n = l->n;
-	if (l->twosided && pm_rng_f(r) < 0.5f)
+	if (l->twosided && u[5] < 0.5f)
 		*n = pm_neg(l->n);
 	*d = pm_sample_cosine(*n, u3, u4);
 }

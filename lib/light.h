@@ -37,6 +37,11 @@ void pm_lights_free(pm_lights *L);
  * path (the light's power divided by the probability of picking it). */
 void pm_lights_emit(const pm_lights *L, pm_rng *r, pm_vec3 *o, pm_vec3 *d, pm_vec3 *n, pm_vec3 *power);
 
+/* The same from given uniforms in [0, 1): u[0] picks the light, u[1], u[2]
+ * the point, u[3], u[4] the direction, u[5] the side of a two-sided one. */
+void pm_lights_emit_u(const pm_lights *L, const float u[6], pm_vec3 *o, pm_vec3 *d, pm_vec3 *n,
+                      pm_vec3 *power);
+
 /* View pass: a shadow-ray sample toward a light from point x. Fills the
  * unit direction *wi, the distance *dist to the light point, and *li =
  * Le cos_l / (pdf_area d^2) (or I / d^2 for a point light) divided by the

@@ -2,6 +2,7 @@
 #include "pass.h"
 
 #include <errno.h>
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -50,6 +51,12 @@ pm_pass_derive(uint32_t i, uint32_t n, uint64_t *seed, float *time)
 	/* Rounding to float may reach the stratum's top; 1 is still a time. */
 	*seed = h;
 	*time = t > 1.0f ? 1.0f : t;
+}
+
+double
+pm_pass_shrink(uint32_t i, double alpha)
+{
+	return i <= 1 ? 1.0 : pow((double)i, 0.5 * (alpha - 1.0));
 }
 
 void

@@ -32,4 +32,13 @@ void pm_pass_derive(uint32_t i, uint32_t n, uint64_t *seed, float *time);
 void pm_pass_apply(uint32_t i, uint32_t n, uint64_t *seed, int *have_seed,
                    float *time, int *have_time);
 
+/* The consistent mode (pm-render --consistent ALPHA, 0 < ALPHA < 1): the
+ * scale of pass i's estimate support, i^((ALPHA - 1) / 2), so that its
+ * area (radius^2, the cube's face) falls as i^(ALPHA - 1) as in progressive
+ * photon mapping (Hachisuka et al. 2008; Knaus & Zwicker 2011, who show
+ * that the average of passes 1..N then converges: its bias falls with the
+ * support and its variance as N^-ALPHA). A function of i alone: any pass
+ * still runs alone, anywhere, and pass 1 is the fixed mode's. */
+double pm_pass_shrink(uint32_t i, double alpha);
+
 #endif

@@ -103,10 +103,10 @@ getline_bounded(FILE *f, char *buf, size_t *total)
 }
 
 enum { K_VERSION, K_ENDIAN, K_RECSIZE, K_KDTREE, K_COUNT, K_EMITTED, K_BBOX,
-       K_HASH, K_TIME, K_SEEDS, K_COMMAND, K_PM_VERSION, K_MAP, K_N };
+       K_HASH, K_TIME, K_SEEDS, K_COMMAND, K_PM_VERSION, K_MAP, K_PATHS, K_DENSITY, K_N };
 static const char *const keynames[K_N] = {
 	"version", "endian", "record_size", "kdtree", "count", "emitted", "bbox",
-	"light_hash", "time", "seeds", "command", "pm_version", "map",
+	"light_hash", "time", "seeds", "command", "pm_version", "map", "light_paths", "density",
 };
 
 const char *
@@ -217,6 +217,21 @@ parse_value(pm_photon_header *h, int key, const char *val, pm_error *err)
 	case K_PM_VERSION:
 		/* Which pm wrote the file, for people: nothing depends on it. */
 		return 0;
+	case K_PATHS:
+		if (strcmp(val, "random") && strcmp(val, "sobol") && strcmp(val, "mixed"))
+			return pm_seterr(err, "bad light_paths '%.40s' (want random, sobol or mixed)", val);
+		snprintf(h->light_paths, sizeof h->light_paths, "%s", val);
+		return 0;
+	case K_DENSITY: {
+		double c;
+		int k, used = -1;
+		if (strcmp(val, "off") && strcmp(val, "mixed") &&
+		    (sscanf(val, "pixels %lf k %d%n", &c, &k, &used) != 2 || used != (int)strlen(val) ||
+		     !(c > 0) || k < 1 || strlen(val) >= sizeof h->density))
+			return pm_seterr(err, "bad density '%.40s' (want off, mixed or pixels C k K)", val);
+		snprintf(h->density, sizeof h->density, "%s", val);
+		return 0;
+	}
 	case K_COMMAND:
 		/* An empty line records nothing (and could not be written back:
 		 * the history is a '\n'-joined string). */
@@ -238,6 +253,9 @@ read_header(pm_photons *out, FILE *f, const char *name, char **raw, pm_error *er
 	int seen[K_N] = {0}, lineno = 1, bad = 0, c;
 
 	memset(out, 0, sizeof *out);
+	/* Files from before the key were all shot pseudo-randomly. */
+	strcpy(h->light_paths, "random");
+	strcpy(h->density, "off");
 	fname(fn, sizeof fn, name, 0);
 	for (size_t i = 0; i < sizeof magic - 1; i++) {
 		c = getc(f);
@@ -347,7 +365,8 @@ read_header(pm_photons *out, FILE *f, const char *name, char **raw, pm_error *er
 		goto fail;
 	}
 	for (int k = 0; k < K_N; k++)
-		if (!seen[k] && k != K_COMMAND && k != K_PM_VERSION && k != K_MAP) {
+		if (!seen[k] && k != K_COMMAND && k != K_PM_VERSION && k != K_MAP && k != K_PATHS
+		    && k != K_DENSITY) {
 			pm_seterr(err, "%s: missing key '%s'", fn, keynames[k]);
 			goto fail;
 		}
@@ -557,11 +576,12 @@ pm_photons_write(const pm_photons *ph, FILE *f, const char *name, pm_error *err)
 		return -1;
 	fprintf(f, "PM-PHOTONS\nversion=%d\nendian=little\nrecord_size=%d\nkdtree=%d\n"
 	        "count=%llu\nemitted=%llu\nbbox=%.9g %.9g %.9g %.9g %.9g %.9g\n"
-	        "light_hash=%016llx\ntime=%.17g\nseeds=%s\npm_version=%s\n",
+	        "light_hash=%016llx\ntime=%.17g\nseeds=%s\npm_version=%s\nlight_paths=%s\ndensity=%s\n",
 	        h->map == PM_MAP_CAUSTIC ? 2 : 1, PM_PHOTON_BYTES, h->kdtree,
 	        (unsigned long long)h->count, (unsigned long long)h->emitted,
 	        bb[0], bb[1], bb[2], bb[3], bb[4], bb[5],
-	        (unsigned long long)h->light_hash, h->time, h->seeds, PM_VERSION);
+	        (unsigned long long)h->light_hash, h->time, h->seeds, PM_VERSION,
+	        h->light_paths[0] ? h->light_paths : "random", h->density[0] ? h->density : "off");
 	if (h->map == PM_MAP_CAUSTIC)
 		fputs("map=caustic\n", f);
 	for (s = h->history; s && *s;) {
@@ -662,6 +682,10 @@ pm_photons_merge(pm_photons *acc, pm_photons *src, const char *src_name, pm_erro
 	acc->h.count = n;
 	acc->h.emitted += src->h.emitted;
 	join_seeds(acc->h.seeds, sizeof acc->h.seeds, src->h.seeds);
+	if (strcmp(acc->h.light_paths, src->h.light_paths) != 0)
+		strcpy(acc->h.light_paths, "mixed");
+	if (strcmp(acc->h.density, src->h.density) != 0)
+		strcpy(acc->h.density, "mixed");
 	return 0;
 }
 

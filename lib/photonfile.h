@@ -28,6 +28,8 @@ typedef struct pm_photon_header {
 	uint64_t light_hash;  /* the scene's light_hash (scene.h) */
 	double time;          /* shutter time of the light pass */
 	char seeds[256];      /* "7", or "1,2,3" after merging */
+	char light_paths[8];  /* "random", "sobol" (shoot.h), "mixed" after merging */
+	char density[48];     /* "off", "pixels C k K" (density.h), "mixed" after merging */
 	char *history;        /* producing command lines, '\n' separated; owned */
 	int map;              /* enum pm_map_kind: which photons the file holds */
 } pm_photon_header;

@@ -281,7 +281,7 @@ pm_render(const pm_frame *f, const pm_photons *map, const pm_render_opts *o,
 	const pm_scene *s = f->s;
 	const pm_estimator *est = o->estimator;
 	ctx c = {s, f->accel, &f->lights, o, est,
-	         {s, f->accel, map, f->pi, o->k, o->classical_norm}, 0.0f, {0}};
+	         {s, f->accel, map, f->pi, o->k, o->classical_norm, o->shrink}, 0.0f, {0}};
 	pm_camera cam;
 	int W, H, fail = 0;
 	size_t npx;

@@ -26,6 +26,7 @@ typedef struct pm_render_opts {
 	int k;              /* nearest photons per estimate */
 	int classical_norm; /* enum pm_classical_norm, for rows that take it; 0 is
 	                     * Jensen's k / (pi r^2) */
+	double shrink;      /* the estimates' support scale, pm_pass_shrink; 0: none */
 	int spp;            /* camera samples per pixel */
 	int light_samples;  /* shadow rays at a path's first hit and at its end
 	                     * (the photon-surface hit); 0 means 1 */

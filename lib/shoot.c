@@ -6,6 +6,7 @@
 #include <string.h>
 
 #include "bsdf.h"
+#include "ldseq.h"
 #include "rng.h"
 
 #define CHUNK 1024          /* paths per work item */
@@ -40,6 +41,26 @@ push(chunk *c, stash *st, const pm_photon *ph)
 	st->p[st->n++] = *ph;
 }
 
+const char *
+pm_light_paths_name(int lp)
+{
+	return lp == PM_PATHS_SOBOL ? "sobol" : lp == PM_PATHS_RANDOM ? "random" : "?";
+}
+
+int
+pm_light_paths_parse(const char *name)
+{
+	if (strcmp(name, "random") == 0)
+		return PM_PATHS_RANDOM;
+	if (strcmp(name, "sobol") == 0)
+		return PM_PATHS_SOBOL;
+	return -1;
+}
+
+/* Pair numbers of a Sobol' path (shoot.h): 0 to 2 for the emission, then
+ * two a bounce. */
+enum { PAIR_LIGHT, PAIR_POINT, PAIR_DIR, PAIR_BOUNCE };
+
 static void
 trace_path(const pm_scene *s, const pm_accel *a, const pm_lights *L, const pm_shoot_opts *o,
            uint64_t idx, chunk *c, int j)
@@ -48,16 +69,26 @@ trace_path(const pm_scene *s, const pm_accel *a, const pm_lights *L, const pm_sh
 	pm_vec3 org, d, n, power;
 	int maxb = o->max_bounces > 0 ? o->max_bounces : 256;
 	int specular_only = 1;  /* every hit so far strong: the path is L S* */
+	int ld = o->light_paths == PM_PATHS_SOBOL;
+	uint64_t lseed = o->seed ^ SHOOT_DOMAIN;
 	pm_hit h;
 
-	pm_lights_emit(L, &r, &org, &d, &n, &power);
+	if (ld) {
+		float u[6];
+		pm_ld_pair(lseed, PAIR_LIGHT, idx, &u[0], &u[5]);
+		pm_ld_pair(lseed, PAIR_POINT, idx, &u[1], &u[2]);
+		pm_ld_pair(lseed, PAIR_DIR, idx, &u[3], &u[4]);
+		pm_lights_emit_u(L, u, &org, &d, &n, &power);
+	} else {
+		pm_lights_emit(L, &r, &org, &d, &n, &power);
+	}
 	if (pm_dot(n, d) != 0)
 		org = pm_accel_offset(a, org, n, d);
 	for (int bounce = 0; bounce < maxb; bounce++) {
 		const pm_material *m;
 		pm_vec3 wo = pm_neg(d);
 		pm_scatter sc;
-		float q;
+		float q, u[4];
 
 		if (!pm_accel_hit(a, org, d, 0.0f, FLT_MAX, &h))
 			return;
@@ -75,10 +106,20 @@ trace_path(const pm_scene *s, const pm_accel *a, const pm_lights *L, const pm_sh
 		}
 		if (pm_mat_is_photon_surface(m))
 			specular_only = 0;
-		if (pm_bsdf_sample(m, h.ng, wo, &r, &sc) != 0)
+		/* Pseudo-random: the roulette's number follows the BSDF's three,
+		 * drawn before the sample as it ends the path if that fails. */
+		if (ld) {
+			uint32_t pair = PAIR_BOUNCE + 2 * (uint32_t)bounce;
+			pm_ld_pair(lseed, pair, idx, &u[0], &u[1]);
+			pm_ld_pair(lseed, pair + 1, idx, &u[2], &u[3]);
+		} else {
+			for (int i = 0; i < 4; i++)
+				u[i] = pm_rng_f(&r);
+		}
+		if (pm_bsdf_sample_u(m, h.ng, wo, u[0], u[1], u[2], &sc) != 0)
 			return;
 		q = fminf(1.0f, pm_maxc(sc.weight));
-		if (!(q > 0) || pm_rng_f(&r) >= q)
+		if (!(q > 0) || u[3] >= q)
 			return;
 		power = pm_scale(pm_mul(power, sc.weight), 1.0f / q);
 		org = pm_accel_offset(a, h.p, h.ng, sc.wi);
@@ -206,6 +247,7 @@ pm_shoot(const pm_scene *s, const pm_accel *a, const pm_lights *L,
 	out->h.light_hash = s->light_hash;
 	out->h.time = o->time;
 	snprintf(out->h.seeds, sizeof out->h.seeds, "%llu", (unsigned long long)o->seed);
+	snprintf(out->h.light_paths, sizeof out->h.light_paths, "%s", pm_light_paths_name(o->light_paths));
 	if (o->caustic) {
 		o->caustic->h = out->h;
 		o->caustic->h.map = PM_MAP_CAUSTIC;

@@ -4,7 +4,15 @@
  *
  * Light path i draws its random numbers from pm_rng_seed(seed', i) only, and
  * paths are kept in index order, so the photons are a function of the scene,
- * time, seed and count, never of the thread count. */
+ * time, seed and count, never of the thread count.
+ *
+ * With PM_PATHS_SOBOL path i takes its numbers from point i of scrambled
+ * Sobol' pairs (ldseq.h) instead: (light, side), emission point, emission
+ * direction, then per bounce (direction) and (lobe, Russian roulette). The
+ * scrambles come from the seed, which -P derives from the pass index, so a
+ * pass's paths are one randomized low-discrepancy set and the passes are
+ * independent of each other, as pseudo-random ones are: their average and
+ * its spread (pm-average's error estimate) stay what they mean. */
 #ifndef PM_SHOOT_H
 #define PM_SHOOT_H
 
@@ -17,8 +25,16 @@
 #include "progress.h"
 #include "scene.h"
 
+enum pm_light_paths { PM_PATHS_RANDOM, PM_PATHS_SOBOL };
+
+/* "random" or "sobol" (the photon file's light_paths key), and back: -1 if
+ * the name is unknown. */
+const char *pm_light_paths_name(int lp);
+int pm_light_paths_parse(const char *name);
+
 typedef struct pm_shoot_opts {
 	uint64_t nphotons;  /* photons to store */
+	int light_paths;    /* enum pm_light_paths */
 	uint64_t seed;
 	float time;         /* shutter time the accel and lights were built at */
 	int max_bounces;    /* hard cap on a path's length; 0 means 256 */

@@ -19,8 +19,8 @@
 static const char usage[] = "pm-average [-fhqs] [-o OUT.exr] IMAGE...";
 
 static const opt opts[] = {
-	{ 'f', "force", NULL, "average despite differing pm.scene_hash or pm.estimator, "
-	  "or a pass given twice", "refuse", 0 },
+	{ 'f', "force", NULL, "average despite differing pm.scene_hash, pm.estimator or "
+	  "pm.consistent, or a pass given twice", "refuse", 0 },
 	{ 'o', "output", "F", "write the average to the EXR file F, - for stdout", "none", 0 },
 	{ 'q', "quiet", NULL, "no warnings, no progress bar", "warn about "
 	  "dropped layers and forced mismatches; a progress bar "
@@ -40,13 +40,14 @@ static const tool average = {
  * every input lacks it). */
 static const char *const agreed[] = {
 	"pm.scene_hash", "pm.estimator", "pm.k", "pm.spp", "pm.photons", "pm.time",
-	"pm.light_samples", "pm.estimates", "pm.gather",
+	"pm.light_samples", "pm.estimates", "pm.gather", "pm.consistent", "pm.light_paths",
+	"pm.density",
 };
 enum { NAGREED = sizeof agreed / sizeof agreed[0] };
 
 /* What --force overrode, recorded in pm.forced and inherited from inputs,
  * so that an average's provenance survives further averaging. */
-static const char *const forced_word[] = { "scene_hash", "estimator", "duplicates" };
+static const char *const forced_word[] = { "scene_hash", "estimator", "duplicates", "consistent" };
 enum { NFORCED = sizeof forced_word / sizeof forced_word[0] };
 
 static int
@@ -103,9 +104,9 @@ must_agree(int k, const char *what, const char *path, const char *v, const char 
 int
 main(int argc, char **argv)
 {
-	const char *outpath = NULL, *first = NULL, *est_ref = NULL;
-	char firstnm[300], est_refnm[300];
-	char *est = NULL;
+	const char *outpath = NULL, *first = NULL, *est_ref = NULL, *cons_ref = NULL, *cons;
+	char firstnm[300], est_refnm[300], cons_refnm[300];
+	char *est = NULL, *cons_val = NULL;
 	char *value[NAGREED] = { NULL };
 	int agree[NAGREED];
 	int force = 0, quiet = 0, stats = 0, opt, ndropped = 0, all_ids = 1, da, db;
@@ -161,6 +162,16 @@ main(int argc, char **argv)
 			all_ids = 0;    /* older files: accepted, but the list is incomplete */
 		}
 		forced |= forced_flags(pm_image_attr(&img, "pm.forced"));
+		/* Fixed and consistent passes converge to different images; files
+		 * from before the mode are fixed ones. */
+		cons = pm_image_attr(&img, "pm.consistent") ? pm_image_attr(&img, "pm.consistent") : "off";
+		if (!cons_ref) {
+			cons_ref = strcpy(cons_refnm, path);
+			if (!(cons_val = strdup(cons)))
+				die("out of memory");
+		} else {
+			must_agree(3, "consistent mode", path, cons, cons_ref, cons_val, force, quiet, &overrode);
+		}
 		/* Inputs that name their estimator must name the same one;
 		 * files that do not (older or foreign ones) are accepted. */
 		if (pm_image_attr(&img, "pm.estimator") && !est_ref) {
@@ -236,6 +247,8 @@ main(int argc, char **argv)
 		/* Unlike a missing one, "mixed" differs from every estimator. */
 		if ((overrode & 1u << 1) && pm_image_set_attr(&img, "pm.estimator", "mixed", &err))
 			die_err(&err);
+		if ((overrode & 1u << 3) && pm_image_set_attr(&img, "pm.consistent", "mixed", &err))
+			die_err(&err);
 		set_forced(&img, forced | overrode);
 		if (pm_image_write_exr(&img, outpath, &err))
 			die_err(&err);
@@ -252,6 +265,7 @@ main(int argc, char **argv)
 		free(value[k]);
 	free(dropped);
 	free(est);
+	free(cons_val);
 	pm_avg_free(&avg);
 	pm_passids_free(&ids);
 	return 0;

@@ -8,13 +8,25 @@
 #include <unistd.h>
 
 #include "atomic.h"
+#include "density.h"
+#include "frame.h"
 #include "kdtree.h"
 #include "photonfile.h"
 #include "options.h"
 #include "util.h"
 
-static const char usage[] = "pm-build [-fhq] [-j THREADS] [-o FILE|-] [FILE ...|-]";
+static const char usage[] =
+	"pm-build [-fhq] [--density SCENE [--density-pixels C] [--density-k K]] [-j THREADS] "
+	"[-o FILE|-] [FILE ...|-]";
+
+enum { DENSITY = OPT_LONG, DENSITY_PIXELS, DENSITY_K };
+
 static const opt opts[] = {
+	{ DENSITY, "density", "SCENE", "density control (Suykens & Willems 2000): thin the map where "
+	  "it holds more than K photons in C pixel footprints of SCENE's camera, the dropped photons "
+	  "handing their power to stored neighbours (see pm-build(1))", "off", 0 },
+	{ DENSITY_PIXELS, "density-pixels", "C", "--density's smallest support, in pixel footprints", "2", 0 },
+	{ DENSITY_K, "density-k", "K", "--density's photons per estimate (pm-render -k)", "50", 0 },
 	{ 'f', "force", NULL, "merge inputs whose light_hash or time differ", "refuse", 0 },
 	{ 'j', "threads", "THREADS", "threads, 0 for all cores; the output does not depend on it", "0", 1 },
 	{ 'o', "output", "FILE", "the photon map to write, - for stdout", "-", 0 },
@@ -30,6 +42,28 @@ static const tool build = {
 	opts, NULL,
 };
 
+/* --density: the scene posed at the map's time gives the camera. */
+static void
+control(pm_photons *map, const char *path, const pm_density_opts *o, int force)
+{
+	pm_scene s;
+	pm_frame f;
+	pm_error err;
+
+	if (pm_scene_load(&s, path, &err))
+		die_err(&err);
+	if (s.light_hash != map->h.light_hash && !force)
+		die("'%s': not the photons' scene (light_hash %016llx, the photons' %016llx); "
+		    "--force uses it", path, (unsigned long long)s.light_hash,
+		    (unsigned long long)map->h.light_hash);
+	if (pm_frame_build(&f, &s, (float)map->h.time, 0, &err) ||
+	    pm_density_control(&f, map, o, &err))
+		die_err(&err);
+	snprintf(map->h.density, sizeof map->h.density, "pixels %.6g k %d", o->pixels, o->k);
+	pm_frame_free(&f);
+	pm_scene_free(&s);
+}
+
 int
 main(int argc, char **argv)
 {
@@ -37,6 +71,9 @@ main(int argc, char **argv)
 	const char *out = "-", *first = NULL;
 	char **in, qa[600], qb[600];
 	int force = 0, quiet = 0, nin, c;
+	const char *dscene = NULL;
+	int dgiven = 0;
+	pm_density_opts dopt = {.k = 50, .pixels = 2};
 	pm_photons acc;
 	pm_error err;
 	pm_out o;
@@ -45,11 +82,22 @@ main(int argc, char **argv)
 	while ((c = opt_next(&build, argc, argv)) != -1) {
 		switch (c) {
 		case 'f': force = 1; break;
+		case DENSITY: dscene = optarg; break;
+		case DENSITY_PIXELS:
+			dopt.pixels = parse_real(optarg, 1e-3, 1e6, "--density-pixels", usage);
+			dgiven = 1;
+			break;
+		case DENSITY_K:
+			dopt.k = (int)parse_int(optarg, 1, 100000, "--density-k", usage);
+			dgiven = 1;
+			break;
 		case 'j': set_threads((int)parse_int(optarg, 0, 4096, "-j", usage)); break;
 		case 'o': out = optarg; break;
 		case 'q': quiet = 1; break;
 		}
 	}
+	if (!dscene && dgiven)
+		usage_err(usage, "--density-pixels and --density-k need --density SCENE");
 	in = argv + optind;
 	nin = argc - optind;
 	if (nin == 0) {
@@ -109,6 +157,8 @@ main(int argc, char **argv)
 	if (pm_kd_build(acc.p, (size_t)acc.h.count, &err))
 		die_err(&err);
 	acc.h.kdtree = 1;
+	if (dscene)
+		control(&acc, dscene, &dopt, force);
 	if (pm_photons_add_history(&acc, cmdline(), &err))
 		die_err(&err);
 	if (pm_out_open(&o, out, &err))

@@ -119,6 +119,7 @@ print_stats(FILE *o, const pm_photons *ph, size_t header_bytes)
 		fprintf(o, "mean_power: 0 0 0\n");
 	fprintf(o, "light_hash: %016llx\n", (unsigned long long)h->light_hash);
 	fprintf(o, "seeds: %s\n", h->seeds);
+	fprintf(o, "light_paths: %s\n", h->light_paths);
 	fprintf(o, "time: %.17g\n", h->time);
 	if (h->kdtree)
 		fprintf(o, "tree_depth: %d\n", pm_kd_depth((size_t)h->count));

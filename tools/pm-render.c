@@ -21,7 +21,7 @@
 #include "util.h"
 
 static const char est_default[] = "compensated";
-static char usage[512], est_help[512];
+static char usage[768], est_help[512];
 
 /* The usage line and -e's help, with the estimators from their table. */
 static void
@@ -39,7 +39,8 @@ make_usage(void)
 	snprintf(usage, sizeof usage,
 	         "pm-render SCENE [MAP|-] [-e %s] [-k K] [--classical-norm k|k-1] [-p SAMPLES] "
 	         "[-l N] [--estimates pixel|sample] [-g RAYS [--caustic CMAP] [--irradiance EVERY] [--guided]] "
-	         "[-P I/N] [-s SEED] [-t TIME] [-j THREADS] [-q] [--force] -o OUT.exr", names);
+	         "[-P I/N] [--consistent ALPHA] [-s SEED] [-t TIME] [-j THREADS] [-q] [--force] -o OUT.exr",
+	         names);
 	n = (size_t)snprintf(est_help, sizeof est_help, "estimator:");
 	for (const pm_estimator *e = pm_estimators; e->name && n < sizeof est_help; e++)
 		n += (size_t)snprintf(est_help + n, sizeof est_help - n, " %s: %s;", e->name, e->help);
@@ -47,7 +48,8 @@ make_usage(void)
 		est_help[n - 1] = 0;
 }
 
-enum { FORCE = OPT_LONG, MAX_SAMPLES, CLASSICAL_NORM, ESTIMATES, CAUSTIC, IRRADIANCE, GUIDED };
+enum { FORCE = OPT_LONG, MAX_SAMPLES, CLASSICAL_NORM, ESTIMATES, CAUSTIC, IRRADIANCE, GUIDED,
+       CONSISTENT };
 
 static const opt opts[] = {
 	{ 'e', "estimator", "EST", est_help, est_default, 0 },
@@ -83,6 +85,10 @@ static const opt opts[] = {
 	{ MAX_SAMPLES, "max-samples", "N", "refuse -p above N, against typos", "65536", 0 },
 	{ 'P', "pass", "I/N", "pass I of N: seed and time derived from I and N, as pm-shoot -P "
 	  "does (see pm-render(1)); -s and -t override them", "no pass", 0 },
+	{ CONSISTENT, "consistent", "ALPHA", "the consistent mode: pass I of -P I/N shrinks the "
+	  "estimate's support (the classical disc's radius, the compensated cube's half-size) "
+	  "found with K photons by I^((ALPHA-1)/2), 0 < ALPHA < 1 (2/3 is usual), so that "
+	  "averages of passes 1..N converge to the exact image (see pm-render(1))", "off: fixed K", 0 },
 	{ 'q', "quiet", NULL, "quiet: no progress bar", NULL, 1 },
 	{ 's', "seed", "SEED", "random seed", "0", 0 },
 	{ 't', "time", "TIME", "shutter time in [0,1]", "the map's time, else 0", 0 },
@@ -104,6 +110,20 @@ setattr(pm_image *img, const char *k, const char *v)
 
 	if (pm_image_set_attr(img, k, v, &err) != 0)
 		die_err(&err);
+}
+
+/* pm.consistent is what pm-average checks passes agree on; pm.shrink is
+ * this pass's own scale. */
+static void
+consistent_attrs(pm_image *img, double alpha, double shrink)
+{
+	char buf[64];
+
+	if (alpha > 0)
+		snprintf(buf, sizeof buf, "alpha %.9g", alpha);
+	setattr(img, "pm.consistent", alpha > 0 ? buf : "off");
+	snprintf(buf, sizeof buf, "%.9g", alpha > 0 ? shrink : 1.0);
+	setattr(img, "pm.shrink", buf);
 }
 
 /* 1 if path begins as a photon file does. */
@@ -148,6 +168,7 @@ main(int argc, char **argv)
 	uint32_t pass_i = 0, pass_n = 0;
 	progress bar;
 	float time = 0;
+	double alpha = 0;
 	pm_scene s;
 	pm_photons map = {0};
 	pm_frame fr;
@@ -168,6 +189,11 @@ main(int argc, char **argv)
 		case CAUSTIC: cname = optarg; break;
 		case IRRADIANCE: irr_every = (int)parse_int(optarg, 0, 1 << 20, "--irradiance", usage); break;
 		case GUIDED: guided = 1; break;
+		case CONSISTENT:
+			alpha = parse_real(optarg, 0, 1, "--consistent", usage);
+			if (!(alpha > 0 && alpha < 1))
+				usage_err(usage, "--consistent: ALPHA must be between 0 and 1, not %s", optarg);
+			break;
 		case 'j': threads = (int)parse_int(optarg, 0, 4096, "-j", usage); break;
 		case 'k': o.k = (int)parse_int(optarg, 1, 100000, "-k", usage); break;
 		case 'o': out = optarg; break;
@@ -219,6 +245,13 @@ main(int argc, char **argv)
 	if (o.spp > max_spp)
 		usage_err(usage, "-p: %d is more than %d samples per pixel (a typo? --max-samples raises the limit)",
 		          o.spp, max_spp);
+	if (alpha > 0 && pass_n == 0)
+		usage_err(usage, "--consistent needs -P I/N: the pass index sets the support");
+	if (alpha > 0 && (!o.estimator->estimate || !(o.estimator->needs & PM_NEEDS_MAP)))
+		usage_err(usage, "--consistent is for estimates from a photon map, not -e %s",
+		          o.estimator->name);
+	if (alpha > 0)
+		o.shrink = pm_pass_shrink(pass_i, alpha);
 	/* Measured (BENCHMARKS.md, "Levers"): next to a photon estimate four
 	 * shadow rays pay for themselves; in the path tracer, whose every
 	 * camera sample already costs a whole path, one does. */
@@ -265,7 +298,7 @@ main(int argc, char **argv)
 		go.caustic = cname ? &cmap : NULL;
 		go.guided = guided;
 		if (irr_every > 0) {
-			pm_est_in in = {&s, fr.accel, &map, fr.pi, o.k, o.classical_norm};
+			pm_est_in in = {&s, fr.accel, &map, fr.pi, o.k, o.classical_norm, o.shrink};
 			if (pm_irradiance_build(&irr, o.estimator, &in, irr_every, &err) != 0)
 				die_err(&err);
 			go.irr = &irr;
@@ -303,6 +336,8 @@ main(int argc, char **argv)
 	snprintf(buf, sizeof buf, "%016" PRIx64, s.view_hash);
 	setattr(&img, "pm.scene_hash", buf);
 	setattr(&img, "pm.estimator", o.estimator->name);
+	setattr(&img, "pm.light_paths", mapname ? map.h.light_paths : "none");
+	setattr(&img, "pm.density", mapname ? map.h.density : "none");
 	snprintf(buf, sizeof buf, "%d", o.k);
 	setattr(&img, "pm.k", buf);
 	if (gather_rays > 0) {
@@ -314,6 +349,7 @@ main(int argc, char **argv)
 		snprintf(buf, sizeof buf, "%" PRIu64, cmap.h.count);
 		setattr(&img, "pm.caustic_photons", buf);
 	}
+	consistent_attrs(&img, alpha, o.shrink);
 	snprintf(buf, sizeof buf, "%016" PRIx64, pm_pass_id(s.view_hash, o.estimator->name,
 	                                                     o.seed, time, map.h.seeds));
 	setattr(&img, "pm.pass_ids", buf);

@@ -16,13 +16,15 @@
 #include "util.h"
 
 static const char usage[] =
-	"pm-shoot SCENE [-n PHOTONS] [-P I/N] [-s SEED] [-t TIME] [-j THREADS] [-o FILE|-] "
-	"[--caustic CFILE [--caustic-photons N]] [-q]";
+	"pm-shoot SCENE [-n PHOTONS] [--light-paths random|sobol] [-P I/N] [-s SEED] [-t TIME] "
+	"[-j THREADS] [-o FILE|-] [--caustic CFILE [--caustic-photons N]] [-q]";
 
-enum { MAX_PHOTONS = OPT_LONG, CAUSTIC, CAUSTIC_PHOTONS };
+enum { MAX_PHOTONS = OPT_LONG, LIGHT_PATHS, CAUSTIC, CAUSTIC_PHOTONS };
 
 static const opt opts[] = {
 	{ 'n', "photons", "PHOTONS", "photons to store, 1e6 or 2.5e5 allowed", "200000", 0 },
+	{ LIGHT_PATHS, "light-paths", "random|sobol", "the light paths' numbers: pseudo-random, or "
+	  "from scrambled Sobol' pairs (a low-discrepancy sequence; see pm-shoot(1))", "random", 0 },
 	{ MAX_PHOTONS, "max-photons", "N", "refuse -n above N, against typos", "100000000: 2 GB", 0 },
 	{ 'o', "output", "FILE", "output file, - for stdout", "-", 0 },
 	{ CAUSTIC, "caustic", "CFILE", "also write the caustic photons of the same light paths "
@@ -67,6 +69,10 @@ main(int argc, char **argv)
 	while ((c = opt_next(&shoot, argc, argv)) != -1) {
 		switch (c) {
 		case 'j': threads = (int)parse_int(optarg, 0, 4096, "-j", usage); break;
+		case LIGHT_PATHS:
+			if ((o.light_paths = pm_light_paths_parse(optarg)) < 0)
+				usage_err(usage, "--light-paths: unknown '%s' (random or sobol)", optarg);
+			break;
 		case MAX_PHOTONS: max_photons = (uint64_t)parse_int(optarg, 0, 4000000000LL, "--max-photons", usage); break;
 		case 'n': o.nphotons = (uint64_t)parse_int(optarg, 0, 4000000000LL, "-n", usage); break;
 		case 'o': out = optarg; break;

@@ -1,6 +1,7 @@
 /* test_pass.c — pass I of N (lib/pass.h): the documented seed formula
  * against splitmix64 written out here from Vigna's reference, times that
  * stratify [0, 1) one per stratum, distinct seeds, and "I/N" parsing. */
+#include <math.h>
 #include <stdint.h>
 #include <string.h>
 
@@ -58,6 +59,23 @@ TEST(times_stratify_the_shutter)
 	}
 }
 
+/* The consistent mode's support scale: pass 1 is unshrunk, the area
+ * (scale^2) of pass I is I^(alpha - 1), and the average of the areas over
+ * passes 1..N falls toward 0 (the bias with it), as N^(alpha - 1) / alpha. */
+TEST(shrink_follows_the_pass_index)
+{
+	CHECK(pm_pass_shrink(1, 0.5) == 1.0);
+	CHECKF(fabs(pm_pass_shrink(8, 0.5) - pow(8, -0.25)) < 1e-15, "%.17g", pm_pass_shrink(8, 0.5));
+	CHECKF(fabs(pm_pass_shrink(1000, 2.0 / 3) * pm_pass_shrink(1000, 2.0 / 3) - 0.1) < 1e-12,
+	       "%.17g", pm_pass_shrink(1000, 2.0 / 3));
+	double a = 0;
+	uint32_t n = 100000;
+	for (uint32_t i = 1; i <= n; i++)
+		a += pm_pass_shrink(i, 2.0 / 3) * pm_pass_shrink(i, 2.0 / 3);
+	a /= n;
+	CHECKF(fabs(a / (pow(n, -1.0 / 3) * 1.5) - 1) < 0.01, "mean area %g", a);
+}
+
 TEST(parse)
 {
 	uint32_t i = 0, n = 0;
@@ -80,5 +98,6 @@ main(void)
 	RUN(seed_and_time_follow_the_documented_formula);
 	RUN(times_stratify_the_shutter);
 	RUN(parse);
+	RUN(shrink_follows_the_pass_index);
 	return check_done();
 }
