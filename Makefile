@@ -147,7 +147,7 @@ $(B)/bench/hot: BENCH_LDFLAGS = -Wl,--wrap=pm_accel_hit
 bench-progs: $(TOOLS) $(BENCH)
 bench bench-quick: deps
 	@sh mk/deps.sh bench
-	@$(MAKE) --no-print-directory bench-progs
+	@$(MAKE) --no-print-directory bench-progs $(if $(filter bench,$@),all-tests)
 	@sh bench/run.sh $(if $(filter bench-quick,$@),quick,full) $(B)
 .PHONY: bench bench-quick bench-progs
 

@@ -375,6 +375,14 @@ pixels counted).
 EOF
 # Sections measured by their own scripts (bench/*.sh besides run.sh), kept
 # by hand in bench/sections/ and carried over from run to run.
+[ -n "$(ls "$(dirname "$0")"/sections/*.md 2>/dev/null)" ] && cat <<'EOF'
+
+## The optional modes
+
+Each section below has its own script (named in it), which `make bench`
+(full) reruns, refreshing its tables and plots in `bench/results/`; the
+prose and the numbers quoted in it are from the run each section names.
+EOF
 for f in "$(dirname "$0")"/sections/*.md; do
 	[ -f "$f" ] || continue
 	echo

@@ -359,6 +359,15 @@ lever room "path tracer" 0 "-p 64 -l 1"
 lever room "the default (-p 16 -l 4)" 100000 "-p 16 -l 4"
 lever room "-p 4 -l 4" 100000 "-p 4 -l 4"
 lever room "-p 64 -l 4" 100000 "-p 64 -l 4"
+# ---- the optional modes' own benchmarks (full mode only: tens of minutes) --
+# Each writes its TSVs and plots to bench/results; their prose lives in
+# bench/sections/ (appended to BENCHMARKS.md by report.sh).
+if [ "$mode" = full ]; then
+	for s in consistent ldpaths density gather; do
+		log "bench/$s.sh"
+		BENCH_CACHE=$cache sh "$top/bench/$s.sh" "$B" >&2 || log "bench/$s.sh failed"
+	done
+fi
 t_end=$(now)
 printf 'machine.load_end\t%s\n' "$(cut -d' ' -f1-3 /proc/loadavg)" >>"$micro"
 printf 'machine.bench_wall_s\t%s\n' "$(fsub "$t_end" "$t_start")" >>"$micro"
