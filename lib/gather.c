@@ -5,6 +5,7 @@
 #include <math.h>
 
 #include "bsdf.h"
+#include "direct.h"
 
 #define GATHER_DEPTH 16     /* strong surfaces a gather ray may pass */
 
@@ -22,41 +23,23 @@ pm_gather_init(pm_gather *g, const pm_frame *f, const pm_estimator *est,
 	g->o = o;
 }
 
-/* Power heuristic weight of a strategy of density a against one of b. */
-static float
-power_weight(float a, float b)
-{
-	return a > 0 ? a * a / (a * a + b * b) : 0.0f;
-}
-
-/* Direct light at y: a shadow ray to a light sample and a BSDF sample that
- * may meet an emitter, combined by multiple importance sampling (Veach
- * 1997). Light sampling alone has a heavy tail where a gather ray lands
- * beside an emitter (a ceiling around its lamp, every corner of a furnace). */
+/* Direct light at y: one shadow ray to a light sample and a BSDF sample
+ * that may meet an emitter, combined as the view pass combines them
+ * (direct.h). Light sampling alone has a heavy tail where a gather ray
+ * lands beside an emitter (a ceiling around its lamp, every corner of a
+ * furnace). */
 static pm_vec3
 direct_at(const pm_gather *g, const pm_hit *y, pm_vec3 n, pm_vec3 wo, const pm_material *m,
           pm_rng *r)
 {
-	pm_vec3 wi, li, f, sum = pm_v3(0, 0, 0);
-	float dist, lpdf, cosy;
+	pm_direct dl = {g->s, g->a, g->L};
+	pm_vec3 sum = pm_direct_light(&dl, y->p, y->ng, n, wo, m, 1, r);
 	pm_scatter bs;
 	pm_hit e;
 
-	if (pm_lights_sample(g->L, y->p, r, &wi, &dist, &li, &lpdf) &&
-	    (cosy = pm_dot(wi, n)) > 0 && pm_maxc(f = pm_bsdf_eval(m, n, wi, wo)) > 0) {
-		pm_vec3 o = pm_accel_offset(g->a, y->p, y->ng, wi), lp = pm_add(y->p, pm_scale(wi, dist));
-		float far = pm_len(pm_sub(lp, o)) - 2.0f * pm_accel_eps(g->a, lp);
-		float w = lpdf > 0 ? power_weight(lpdf, pm_bsdf_pdf(m, n, wi, wo)) : 1.0f;
-		if (!(far > 0 && pm_accel_occluded(g->a, o, wi, 0.0f, far)))
-			sum = pm_scale(pm_mul(f, li), cosy * w);
-	}
 	if (pm_bsdf_sample(m, y->ng, wo, r, &bs) == 0 && bs.pdf > 0 &&
-	    pm_accel_hit(g->a, pm_accel_offset(g->a, y->p, y->ng, bs.wi), bs.wi, 0.0f, FLT_MAX, &e)) {
-		const pm_material *em = &g->s->mats[g->s->objs[e.obj].material];
-		if (pm_maxc(em->emit) > 0 && (pm_dot(e.ng, bs.wi) < 0 || em->emit_twosided))
-			sum = pm_add(sum, pm_scale(pm_mul(bs.weight, em->emit),
-			                           power_weight(bs.pdf, pm_lights_pdf(g->L, e.tri, y->p, e.p))));
-	}
+	    pm_direct_bsdf_hit(&dl, y->p, y->ng, bs.wi, &e))
+		sum = pm_add(sum, pm_mul(bs.weight, pm_direct_emitted(&dl, &e, y->p, bs.wi, bs.pdf, 0, 1)));
 	return sum;
 }
 

@@ -16,7 +16,7 @@ pm_lights_build(pm_lights *L, const pm_scene *s, const pm_vec3 *verts, float t, 
 	L->l = NULL;
 	L->cdf = NULL;
 	L->tri_light = NULL;
-	L->n = 0;
+	L->n = L->ntri = 0;
 	L->total = pm_v3(0, 0, 0);
 	for (uint32_t i = 0; i < s->ntris; i++) {
 		const pm_material *m = &s->mats[s->objs[s->poly_obj[s->tri_poly[i]]].material];
@@ -60,6 +60,7 @@ pm_lights_build(pm_lights *L, const pm_scene *s, const pm_vec3 *verts, float t, 
 		l->power = pm_scale(m->emit, (float)PM_PI * l->area * (l->twosided ? 2.0f : 1.0f));
 	}
 	L->n = k;
+	L->ntri = k - s->nlights;
 	for (int i = 0; i < k; i++) {
 		L->total = pm_add(L->total, L->l[i].power);
 		acc += pm_lum(L->l[i].power);
@@ -84,7 +85,7 @@ pm_lights_free(pm_lights *L)
 	L->l = NULL;
 	L->cdf = NULL;
 	L->tri_light = NULL;
-	L->n = 0;
+	L->n = L->ntri = 0;
 }
 
 /* Picks a light in proportion to power; *pdf is its probability. */
@@ -214,12 +215,10 @@ pm_lights_pdf(const pm_lights *L, uint32_t tri, pm_vec3 x, pm_vec3 p)
 int
 pm_lights_first(const pm_lights *L, pm_vec3 o, pm_vec3 d, float *t, int *light)
 {
-	int ntri = 0, best = -1;
+	int best = -1;
 	float tb = FLT_MAX;
 
-	for (int i = 0; i < L->n; i++)
-		ntri += L->l[i].tri >= 0;
-	if (ntri > PM_LIGHTS_SCAN)
+	if (L->ntri > PM_LIGHTS_SCAN)
 		return -1;
 	/* Moller & Trumbore (1997), both sides. */
 	for (int i = 0; i < L->n; i++) {

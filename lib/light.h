@@ -25,6 +25,7 @@ typedef struct pm_light {
 typedef struct pm_lights {
 	pm_light *l;
 	int n;
+	int ntri;           /* of them emitting triangles */
 	float *cdf;         /* n + 1 entries, by mean power over the channels */
 	int *tri_light;     /* per scene triangle: its light index, or -1 */
 	pm_vec3 total;      /* sum of the lights' power */

@@ -9,6 +9,7 @@
 
 #include "bsdf.h"
 #include "camera.h"
+#include "direct.h"
 #include "edge.h"
 #include "rng.h"
 
@@ -40,112 +41,11 @@ typedef struct ctx {
 	const pm_render_opts *o;
 	const pm_estimator *est;
 	pm_est_in in;
+	pm_direct dl;       /* the scene, accel and lights again, for direct.h */
 	float pixel_angle;  /* a pixel's width in radians at the image centre */
+	int light_samples;  /* o->light_samples, at least 1 */
 	pm_gather gather;   /* used if o->gather */
 } ctx;
-
-/* Power heuristic (Veach 1997, §9.2.4) for two strategies, one sample each. */
-static float
-mis(float a, float b)
-{
-	return a > 0 ? a * a / (a * a + b * b) : 0.0f;
-}
-
-/* Direct light by nl shadow rays to light samples, their points stratified
- * over the light (a grid of strata in the unit square that maps onto each
- * triangle), weighted against one BSDF sample of the same light (multiple
- * importance sampling with sample counts, Veach 1997 §9.2.4): corners next
- * to an emitter, where light sampling alone has a heavy tail, are then
- * covered by the BSDF samples. */
-static pm_vec3
-direct_light(const ctx *c, pm_vec3 x, pm_vec3 ng, pm_vec3 n, pm_vec3 wo,
-             const pm_material *m, int nl, pm_rng *r)
-{
-	pm_vec3 sum = pm_v3(0, 0, 0);
-	int ga = (int)sqrtf((float)nl), gb = nl / ga;
-
-	for (int j = 0; j < nl; j++) {
-		pm_vec3 wi, li, f;
-		float dist, cosx, lpdf, w;
-		float u0 = pm_rng_f(r), u1 = pm_rng_f(r), u2 = pm_rng_f(r);
-
-		if (j < ga * gb && nl > 1) {
-			u1 = fminf(((float)(j % ga) + u1) / (float)ga, 0x1.fffffep-1f);
-			u2 = fminf(((float)(j / ga) + u2) / (float)gb, 0x1.fffffep-1f);
-		}
-		if (!pm_lights_sample_u(c->L, x, u0, u1, u2, &wi, &dist, &li, &lpdf))
-			continue;
-		cosx = pm_dot(wi, n);
-		if (cosx <= 0)
-			continue;
-		f = pm_bsdf_eval(m, n, wi, wo);
-		if (pm_maxc(f) <= 0)
-			continue;
-		pm_vec3 o = pm_accel_offset(c->a, x, ng, wi), lp = pm_add(x, pm_scale(wi, dist));
-		/* Stop short of the light's own surface by more than the rounding
-		 * of the light point, which grows with its distance from the origin. */
-		float far = pm_len(pm_sub(lp, o)) - 2.0f * pm_accel_eps(c->a, lp);
-		if (far > 0 && pm_accel_occluded(c->a, o, wi, 0.0f, far))
-			continue;
-		w = lpdf > 0 ? mis((float)nl * lpdf, pm_bsdf_pdf(m, n, wi, wo)) : 1.0f;
-		sum = pm_add(sum, pm_scale(pm_mul(f, li), cosx * w));
-	}
-	return nl > 1 ? pm_scale(sum, 1.0f / (float)nl) : sum;
-}
-
-static pm_vec3
-emitted(const pm_material *m, pm_vec3 ng, pm_vec3 wo)
-{
-	if (!(pm_maxc(m->emit) > 0))
-		return pm_v3(0, 0, 0);
-	if (pm_dot(ng, wo) > 0 || m->emit_twosided)
-		return m->emit;
-	return pm_v3(0, 0, 0);
-}
-
-/* Emission found by a BSDF-sampled ray from x (density bpdf), weighted
- * against the nl light samples taken at x; all of it when the sample was a
- * delta. */
-static pm_vec3
-emitted_mis(const ctx *c, const pm_hit *h, pm_vec3 x, pm_vec3 d, float bpdf, int delta, int nl)
-{
-	const pm_material *m = &c->s->mats[c->s->objs[h->obj].material];
-	pm_vec3 e = emitted(m, h->ng, pm_neg(d));
-
-	if (delta || pm_maxc(e) <= 0)
-		return e;
-	return pm_scale(e, mis(bpdf, (float)nl * pm_lights_pdf(c->L, h->tri, x, h->p)));
-}
-
-/* What a BSDF sample from x along wi reaches, when only an emitter there
- * matters: with few emitting triangles, the nearest one on the ray and a
- * shadow ray to it, so that the many samples that miss every light cost no
- * ray through the scene. Returns 1 with *h the emitter's hit, else 0. */
-static int
-bsdf_light_hit(const ctx *c, pm_vec3 x, pm_vec3 ng, pm_vec3 wi, pm_hit *h)
-{
-	pm_vec3 o = pm_accel_offset(c->a, x, ng, wi), lp;
-	const pm_light *l;
-	float t, far;
-	int i, k = pm_lights_first(c->L, o, wi, &t, &i);
-
-	if (k < 0)
-		return pm_accel_hit(c->a, o, wi, 0.0f, FLT_MAX, h);
-	if (k == 0)
-		return 0;
-	l = &c->L->l[i];
-	lp = pm_add(o, pm_scale(wi, t));
-	far = t - 2.0f * pm_accel_eps(c->a, lp);
-	if (far > 0 && pm_accel_occluded(c->a, o, wi, 0.0f, far))
-		return 0;
-	h->t = t;
-	h->p = lp;
-	h->ng = l->n;
-	h->tri = (uint32_t)l->tri;
-	h->poly = c->s->tri_poly[l->tri];
-	h->obj = (int)c->s->poly_obj[h->poly];
-	return 1;
-}
 
 /* A pixel's first-hit photon estimate, reused by its later camera samples
  * that land on the same polygon (opts.estimate_once): the first sample's
@@ -213,13 +113,11 @@ walk(const ctx *c, void *sc, pm_vec3 o, pm_vec3 d, int depth, pm_vec3 beta, pm_v
 		if (depth == 0)
 			bucket = pm_mat_is_photon_surface(m) ? &out->indirect : &out->specular;
 		here = depth == 0 ? (m->strong ? &out->specular : &out->direct) : bucket;
-		*here = pm_add(*here, pm_mul(beta, emitted_mis(c, &h, prev, d, bpdf, delta, nlprev)));
+		*here = pm_add(*here, pm_mul(beta, pm_direct_emitted(&c->dl, &h, prev, d, bpdf, delta, nlprev)));
 		ends = pm_mat_is_photon_surface(m) && c->est->estimate;
-		nl = depth == 0 || ends ? c->o->light_samples : 1;
-		if (nl < 1)
-			nl = 1;
+		nl = depth == 0 || ends ? c->light_samples : 1;
 		if (m->kind == PM_MAT_DIFFUSE || m->kind == PM_MAT_GLOSSY)
-			*here = pm_add(*here, pm_mul(beta, direct_light(c, h.p, h.ng, n, wo, m, nl, r)));
+			*here = pm_add(*here, pm_mul(beta, pm_direct_light(&c->dl, h.p, h.ng, n, wo, m, nl, r)));
 		if (pm_bsdf_sample(m, h.ng, wo, r, &bs) != 0)
 			bs.pdf = -1;
 		if (ends) {
@@ -227,9 +125,9 @@ walk(const ctx *c, void *sc, pm_vec3 o, pm_vec3 d, int depth, pm_vec3 beta, pm_v
 			pm_vec3 L;
 			pm_hit lh;
 			/* The BSDF-sampled half of the direct light. */
-			if (bs.pdf > 0 && bsdf_light_hit(c, h.p, h.ng, bs.wi, &lh))
+			if (bs.pdf > 0 && pm_direct_bsdf_hit(&c->dl, h.p, h.ng, bs.wi, &lh))
 				*here = pm_add(*here, pm_mul(pm_mul(beta, bs.weight),
-				                             emitted_mis(c, &lh, h.p, bs.wi, bs.pdf, 0, nl)));
+				                             pm_direct_emitted(&c->dl, &lh, h.p, bs.wi, bs.pdf, 0, nl)));
 			/* Gathering draws its own rays: one gather per camera sample. */
 			L = c->o->gather ? pm_gather_radiance(&c->gather, sc, r, h.p, h.ng, n, wo, m, &info)
 			                 : first_estimate(c, sc, &h, n, wo, m, depth == 0 ? pc : NULL, &info);
@@ -281,7 +179,9 @@ pm_render(const pm_frame *f, const pm_photons *map, const pm_render_opts *o,
 	const pm_scene *s = f->s;
 	const pm_estimator *est = o->estimator;
 	ctx c = {s, f->accel, &f->lights, o, est,
-	         {s, f->accel, map, f->pi, o->k, o->classical_norm, o->shrink}, 0.0f, {0}};
+	         {s, f->accel, map, f->pi, o->k, o->classical_norm, o->shrink},
+	         {s, f->accel, &f->lights}, 0.0f,
+	         o->light_samples > 1 ? o->light_samples : 1, {0}};
 	pm_camera cam;
 	int W, H, fail = 0;
 	size_t npx;
