@@ -62,9 +62,8 @@ pm_bsdf_eval(const pm_material *m, pm_vec3 n, pm_vec3 wi, pm_vec3 wo)
 	}
 }
 
-/* Probability of picking the diffuse lobe of a glossy material. */
-static float
-diffuse_share(const pm_material *m)
+float
+pm_bsdf_diffuse_share(const pm_material *m)
 {
 	float d = pm_lum(m->kd), s = pm_lum(m->ks);
 
@@ -74,7 +73,7 @@ diffuse_share(const pm_material *m)
 static float
 glossy_pdf(const pm_material *m, pm_vec3 n, pm_vec3 wi, pm_vec3 wo)
 {
-	float pd = diffuse_share(m), ci = pm_dot(wi, n);
+	float pd = pm_bsdf_diffuse_share(m), ci = pm_dot(wi, n);
 	pm_vec3 h = pm_norm(pm_add(wi, wo));
 	float ch = pm_dot(h, n), oh = pm_dot(wo, h);
 	float ps = 0;
@@ -130,7 +129,7 @@ pm_bsdf_sample_u(const pm_material *m, pm_vec3 ng, pm_vec3 wo, float u1, float u
 		s->pdf = pm_dot(s->wi, n) / (float)PM_PI;
 		return 0;
 	case PM_MAT_GLOSSY: {
-		float pd = diffuse_share(m), pdf, ci;
+		float pd = pm_bsdf_diffuse_share(m), pdf, ci;
 		if (u3 < pd) {
 			s->wi = pm_sample_cosine(n, u1, u2);
 		} else {

@@ -37,6 +37,10 @@ int pm_bsdf_sample_u(const pm_material *m, pm_vec3 ng, pm_vec3 wo, float u1, flo
  * multiple importance sampling (0 for mirror and glass). n on wo's side. */
 float pm_bsdf_pdf(const pm_material *m, pm_vec3 n, pm_vec3 wi, pm_vec3 wo);
 
+/* The probability with which pm_bsdf_sample picks a glossy material's
+ * diffuse lobe (by the lobes' albedos). */
+float pm_bsdf_diffuse_share(const pm_material *m);
+
 /* Sampling helpers. */
 pm_vec3 pm_sample_cosine(pm_vec3 n, float u1, float u2);
 pm_vec3 pm_sample_sphere(float u1, float u2);

@@ -34,7 +34,7 @@ light_blocked(const pm_direct *c, pm_vec3 o, pm_vec3 wi, float dist, pm_vec3 lp)
  * covered by the BSDF samples. */
 pm_vec3
 pm_direct_light(const pm_direct *c, pm_vec3 x, pm_vec3 ng, pm_vec3 n, pm_vec3 wo,
-                const pm_material *m, int nl, pm_rng *r)
+                const pm_material *m, int nl, const pm_guide *gd, pm_rng *r)
 {
 	pm_vec3 sum = pm_v3(0, 0, 0);
 	int ga = (int)sqrtf((float)nl), gb = nl / ga;
@@ -59,7 +59,7 @@ pm_direct_light(const pm_direct *c, pm_vec3 x, pm_vec3 ng, pm_vec3 n, pm_vec3 wo
 		pm_vec3 o = pm_accel_offset(c->a, x, ng, wi), lp = pm_add(x, pm_scale(wi, dist));
 		if (light_blocked(c, o, wi, pm_len(pm_sub(lp, o)), lp))
 			continue;
-		w = lpdf > 0 ? mis((float)nl * lpdf, pm_bsdf_pdf(m, n, wi, wo)) : 1.0f;
+		w = lpdf > 0 ? mis((float)nl * lpdf, pm_guide_mix_pdf(gd, m, n, wi, wo)) : 1.0f;
 		sum = pm_add(sum, pm_scale(pm_mul(f, li), cosx * w));
 	}
 	return nl > 1 ? pm_scale(sum, 1.0f / (float)nl) : sum;

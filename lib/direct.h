@@ -8,6 +8,7 @@
 #define PM_DIRECT_H
 
 #include "accel.h"
+#include "guide.h"
 #include "light.h"
 #include "rng.h"
 #include "scene.h"
@@ -21,9 +22,10 @@ typedef struct pm_direct {
 
 /* The light-sampled part at x (geometric normal ng, shading normal n on
  * wo's side, material m): nl shadow rays, their points stratified over the
- * lights, each weighted against one BSDF sample of the same light. */
+ * lights, each weighted against one BSDF sample of the same light, drawn
+ * by pm_guide_mix with gd (BSDF alone if gd is NULL). */
 pm_vec3 pm_direct_light(const pm_direct *c, pm_vec3 x, pm_vec3 ng, pm_vec3 n, pm_vec3 wo,
-                        const pm_material *m, int nl, pm_rng *r);
+                        const pm_material *m, int nl, const pm_guide *gd, pm_rng *r);
 
 /* What a BSDF sample from x along wi reaches when only an emitter there
  * matters: 1 with *h the emitter's hit, else 0. With few emitting

@@ -53,6 +53,7 @@ pm_guide_build(pm_guide *gd, const pm_photons *map, pm_vec3 x, pm_vec3 n)
 	for (int c = 0; c < PM_GUIDE_CELLS; c++)
 		gd->cdf[c + 1] = gd->cdf[c] + w[c];
 	gd->empty = !(gd->cdf[PM_GUIDE_CELLS] > 0);
+	gd->share = 0.5f;
 }
 
 float
@@ -96,7 +97,7 @@ pm_guide_mix(const pm_guide *gd, const pm_material *m, pm_vec3 ng, pm_vec3 n,
 
 	if (!gd || gd->empty)
 		return pm_bsdf_sample(m, ng, wo, r, s);
-	if (pick < 0.5f) {
+	if (pick < 1.0f - gd->share) {
 		if (pm_bsdf_sample(m, ng, wo, r, s) != 0)
 			return -1;
 	} else {
@@ -106,11 +107,19 @@ pm_guide_mix(const pm_guide *gd, const pm_material *m, pm_vec3 ng, pm_vec3 n,
 	ci = pm_dot(s->wi, n);
 	if (!(ci > 0))
 		return -1;
-	pdf = 0.5f * pm_bsdf_pdf(m, n, s->wi, wo) + 0.5f * pm_guide_pdf(gd, s->wi);
+	pdf = pm_guide_mix_pdf(gd, m, n, s->wi, wo);
 	if (!(pdf > 0))
 		return -1;
 	s->weight = pm_scale(pm_bsdf_eval(m, n, s->wi, wo), ci / pdf);
 	s->pdf = pdf;
 	s->delta = 0;
 	return pm_vfinite(s->weight) ? 0 : -1;
+}
+
+float
+pm_guide_mix_pdf(const pm_guide *gd, const pm_material *m, pm_vec3 n, pm_vec3 wi, pm_vec3 wo)
+{
+	if (!gd || gd->empty)
+		return pm_bsdf_pdf(m, n, wi, wo);
+	return (1.0f - gd->share) * pm_bsdf_pdf(m, n, wi, wo) + gd->share * pm_guide_pdf(gd, wi);
 }

@@ -112,7 +112,7 @@ static const char *const keynames[K_N] = {
 const char *
 pm_map_name(int map)
 {
-	return map == PM_MAP_CAUSTIC ? "caustic" : "global";
+	return map == PM_MAP_CAUSTIC ? "caustic" : map == PM_MAP_GUIDE ? "guide" : "global";
 }
 
 static int
@@ -211,8 +211,10 @@ parse_value(pm_photon_header *h, int key, const char *val, pm_error *err)
 			h->map = PM_MAP_GLOBAL;
 		else if (strcmp(val, "caustic") == 0)
 			h->map = PM_MAP_CAUSTIC;
+		else if (strcmp(val, "guide") == 0)
+			h->map = PM_MAP_GUIDE;
 		else
-			return pm_seterr(err, "bad map '%.40s' (want global or caustic)", val);
+			return pm_seterr(err, "bad map '%.40s' (want global, caustic or guide)", val);
 		return 0;
 	case K_PM_VERSION:
 		/* Which pm wrote the file, for people: nothing depends on it. */
@@ -513,7 +515,7 @@ check_for_write(const pm_photons *ph, const char *fn, float bbox[6], size_t *hle
 		return pm_seterr(err, "%s: time is not finite", fn);
 	if (h->kdtree != 0 && h->kdtree != 1)
 		return pm_seterr(err, "%s: kdtree must be 0 or 1", fn);
-	if (h->map != PM_MAP_GLOBAL && h->map != PM_MAP_CAUSTIC)
+	if (h->map != PM_MAP_GLOBAL && h->map != PM_MAP_CAUSTIC && h->map != PM_MAP_GUIDE)
 		return pm_seterr(err, "%s: unknown map kind %d", fn, h->map);
 	if (!seeds_ok(h->seeds))
 		return pm_seterr(err, "%s: bad seeds '%.40s'", fn, h->seeds);
@@ -577,13 +579,13 @@ pm_photons_write(const pm_photons *ph, FILE *f, const char *name, pm_error *err)
 	fprintf(f, "PM-PHOTONS\nversion=%d\nendian=little\nrecord_size=%d\nkdtree=%d\n"
 	        "count=%llu\nemitted=%llu\nbbox=%.9g %.9g %.9g %.9g %.9g %.9g\n"
 	        "light_hash=%016llx\ntime=%.17g\nseeds=%s\npm_version=%s\nlight_paths=%s\ndensity=%s\n",
-	        h->map == PM_MAP_CAUSTIC ? 2 : 1, PM_PHOTON_BYTES, h->kdtree,
+	        h->map != PM_MAP_GLOBAL ? 2 : 1, PM_PHOTON_BYTES, h->kdtree,
 	        (unsigned long long)h->count, (unsigned long long)h->emitted,
 	        bb[0], bb[1], bb[2], bb[3], bb[4], bb[5],
 	        (unsigned long long)h->light_hash, h->time, h->seeds, PM_VERSION,
 	        h->light_paths[0] ? h->light_paths : "random", h->density[0] ? h->density : "off");
-	if (h->map == PM_MAP_CAUSTIC)
-		fputs("map=caustic\n", f);
+	if (h->map != PM_MAP_GLOBAL)
+		fprintf(f, "map=%s\n", pm_map_name(h->map));
 	for (s = h->history; s && *s;) {
 		size_t n = strcspn(s, "\n");
 		fprintf(f, "command=%.*s\n", (int)n, s);

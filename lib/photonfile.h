@@ -13,8 +13,8 @@
 
 /* The newest version this pm reads. It writes version 1 for global maps, so
  * older readers still take them, and version 2 (which adds the map key) for
- * caustic maps, so older readers refuse them instead of taking them for
- * global ones. */
+ * caustic and guide maps, so older readers refuse them instead of taking
+ * them for global ones. */
 #define PM_PHOTONS_VERSION 2
 /* The first bytes of every photon file. */
 #define PM_PHOTONS_MAGIC "PM-PHOTONS\n"
@@ -37,10 +37,13 @@ typedef struct pm_photon_header {
 /* Which photons a file holds (the header's map key): every photon stored
  * after the first bounce (global), or only those whose path from the light
  * went through mirrors, glass and strong glossy surfaces alone before the
- * diffuse hit, L S+ D (caustic, Jensen 1996). */
-enum pm_map_kind { PM_MAP_GLOBAL = 0, PM_MAP_CAUSTIC = 1 };
+ * diffuse hit, L S+ D (caustic, Jensen 1996), or the photons that met a
+ * strong glossy surface after the first bounce, where the global map
+ * stores none (guide: their incoming directions steer view paths that
+ * continue there, guide.h). */
+enum pm_map_kind { PM_MAP_GLOBAL = 0, PM_MAP_CAUSTIC = 1, PM_MAP_GUIDE = 2 };
 
-/* "global" or "caustic". */
+/* "global", "caustic" or "guide". */
 const char *pm_map_name(int map);
 
 /* A photon file or map in memory. */

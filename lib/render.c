@@ -47,7 +47,8 @@ typedef struct ctx {
 	pm_gather gather;   /* used if o->gather */
 } ctx;
 
-/* A pixel's first-hit photon estimate, reused by its later camera samples
+/* What a pixel's camera samples share. Its first-hit photon estimate,
+ * reused by its later camera samples
  * that land on the same polygon (opts.estimate_once): the first sample's
  * point is uniform over the pixel's footprint on that polygon, so the
  * pixel's expected value is unchanged. It is reused only when the
@@ -61,6 +62,12 @@ typedef struct pxcache {
 	uint32_t poly;
 	pm_vec3 L;
 	pm_estimate_info info;
+	/* The guide (opts.guide) at the pixel's first strong glossy hit,
+	 * reused by its later samples on the same polygon: any histogram
+	 * leaves the mean alone, and one a few millimetres away is as good. */
+	int gvalid;
+	uint32_t gpoly;
+	pm_guide gd;
 } pxcache;
 
 static pm_vec3
@@ -104,6 +111,8 @@ walk(const ctx *c, void *sc, pm_vec3 o, pm_vec3 d, int depth, pm_vec3 beta, pm_v
 		pm_vec3 wo = pm_neg(d), n;
 		pm_vec3 *here;
 		pm_scatter bs;
+		pm_guide gd;
+		const pm_guide *g = NULL;
 		int ends, nl;
 
 		if (!pm_accel_hit(c->a, o, d, 0.0f, FLT_MAX, &h))
@@ -116,9 +125,27 @@ walk(const ctx *c, void *sc, pm_vec3 o, pm_vec3 d, int depth, pm_vec3 beta, pm_v
 		*here = pm_add(*here, pm_mul(beta, pm_direct_emitted(&c->dl, &h, prev, d, bpdf, delta, nlprev)));
 		ends = pm_mat_is_photon_surface(m) && c->est->estimate;
 		nl = depth == 0 || ends ? c->light_samples : 1;
+		/* The guide is built before the light samples: their weights
+		 * take the density the continuation is drawn with. */
+		if (c->o->guide && m->kind == PM_MAT_GLOSSY && m->strong) {
+			/* Only the diffuse lobe's light is spread out over the
+			 * hemisphere; the glossy lobe keeps its own samples. */
+			if (depth == 0 && pc->gvalid && pc->gpoly == h.poly) {
+				g = &pc->gd;
+			} else {
+				pm_guide_build(&gd, c->o->guide, h.p, n);
+				gd.share = 0.5f * pm_bsdf_diffuse_share(m);
+				g = &gd;
+				if (depth == 0) {
+					pc->gd = gd;
+					pc->gpoly = h.poly;
+					pc->gvalid = 1;
+				}
+			}
+		}
 		if (m->kind == PM_MAT_DIFFUSE || m->kind == PM_MAT_GLOSSY)
-			*here = pm_add(*here, pm_mul(beta, pm_direct_light(&c->dl, h.p, h.ng, n, wo, m, nl, r)));
-		if (pm_bsdf_sample(m, h.ng, wo, r, &bs) != 0)
+			*here = pm_add(*here, pm_mul(beta, pm_direct_light(&c->dl, h.p, h.ng, n, wo, m, nl, g, r)));
+		if ((g ? pm_guide_mix(g, m, h.ng, n, wo, r, &bs) : pm_bsdf_sample(m, h.ng, wo, r, &bs)) != 0)
 			bs.pdf = -1;
 		if (ends) {
 			pm_estimate_info info;
@@ -130,7 +157,8 @@ walk(const ctx *c, void *sc, pm_vec3 o, pm_vec3 d, int depth, pm_vec3 beta, pm_v
 				                             pm_direct_emitted(&c->dl, &lh, h.p, bs.wi, bs.pdf, 0, nl)));
 			/* Gathering draws its own rays: one gather per camera sample. */
 			L = c->o->gather ? pm_gather_radiance(&c->gather, sc, r, h.p, h.ng, n, wo, m, &info)
-			                 : first_estimate(c, sc, &h, n, wo, m, depth == 0 ? pc : NULL, &info);
+			                 : first_estimate(c, sc, &h, n, wo, m,
+			                                  depth == 0 && c->o->estimate_once ? pc : NULL, &info);
 			*bucket = pm_add(*bucket, pm_mul(beta, L));
 			if (depth == 0) {
 				out->size = info.size;
@@ -235,8 +263,7 @@ pm_render(const pm_frame *f, const pm_photons *map, const pm_render_opts *o,
 				for (int k = 0; k < o->spp; k++) {
 					sample smp;
 					float sx = (float)x + pm_rng_f(&r), sy = (float)y + pm_rng_f(&r);
-					trace(&c, sc, cam.eye, pm_camera_dir(&cam, sx, sy), &r, &smp,
-					      o->estimate_once ? &pc : NULL);
+					trace(&c, sc, cam.eye, pm_camera_dir(&cam, sx, sy), &r, &smp, &pc);
 					if (!finite_sample(&smp))
 						continue;
 					dsum = pm_add(dsum, smp.direct);

@@ -36,6 +36,10 @@ typedef struct pm_render_opts {
 	int max_depth;      /* longest camera path; 0 means 64 */
 	const pm_gather_opts *gather;  /* if set, final gathering at the photon
 	                                * surface instead of the estimate there */
+	const pm_photons *guide;  /* if set, a built guide map (photonfile.h):
+	                           * paths go on from strong glossy surfaces in
+	                           * directions drawn half from its photons'
+	                           * (guide.h), half from the BSDF */
 	pm_progress_fn *progress;  /* if set, called with (rows done, rows) */
 	void *progress_arg;
 } pm_render_opts;

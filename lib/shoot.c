@@ -21,7 +21,7 @@ typedef struct stash {
 } stash;
 
 typedef struct chunk {
-	stash glob, caus;
+	stash glob, caus, guide;
 	int oom;
 } chunk;
 
@@ -104,6 +104,15 @@ trace_path(const pm_scene *s, const pm_accel *a, const pm_lights *L, const pm_sh
 				c->caus.count[j]++;
 			}
 		}
+		/* Where the view path goes on by sampling the BSDF (a lobe, not
+		 * a delta), the guide map keeps what arrived: guide.h. */
+		if (bounce > 0 && o->guide && m->kind == PM_MAT_GLOSSY && m->strong) {
+			pm_photon ph;
+			pm_vec3 ns = pm_dot(h.ng, wo) >= 0 ? h.ng : pm_neg(h.ng);
+			pm_photon_pack(&ph, h.p, wo, ns, power);
+			push(c, &c->guide, &ph);
+			c->guide.count[j]++;
+		}
 		if (pm_mat_is_photon_surface(m))
 			specular_only = 0;
 		/* Pseudo-random: the roulette's number follows the BSDF's three,
@@ -168,8 +177,8 @@ pm_shoot(const pm_scene *s, const pm_accel *a, const pm_lights *L,
 	uint64_t most = want > cwant ? want : cwant;
 	uint64_t maxp = o->max_paths ? o->max_paths : 64 * most + (1u << 20);
 	chunk *ch = calloc(BATCH, sizeof *ch);
-	pm_photon *all = NULL, *caus = NULL;
-	size_t stored = 0, ncaus = 0, capcaus = 0, cap = 0;
+	pm_photon *all = NULL, *caus = NULL, *guide = NULL;
+	size_t stored = 0, ncaus = 0, capcaus = 0, cap = 0, nguide = 0, capguide = 0;
 	/* Each map is done after the path that stores its last photon; a
 	 * caustic map without a count of its own takes the global map's paths. */
 	int gdone = want == 0, cdone = !o->caustic || (cwant > 0 && !has_strong(s)), oom = 0;
@@ -177,6 +186,8 @@ pm_shoot(const pm_scene *s, const pm_accel *a, const pm_lights *L,
 	memset(out, 0, sizeof *out);
 	if (o->caustic)
 		memset(o->caustic, 0, sizeof *o->caustic);
+	if (o->guide)
+		memset(o->guide, 0, sizeof *o->guide);
 	if (!ch)
 		return pm_seterr(err, "out of memory");
 	if (want > 0 && !(all = malloc(want * sizeof *all))) {
@@ -191,16 +202,17 @@ pm_shoot(const pm_scene *s, const pm_accel *a, const pm_lights *L,
 		#pragma omp parallel for schedule(dynamic, 1)
 		for (int ci = 0; ci < BATCH; ci++) {
 			chunk *c = &ch[ci];
-			c->glob.n = c->caus.n = 0;
+			c->glob.n = c->caus.n = c->guide.n = 0;
 			memset(c->glob.count, 0, sizeof c->glob.count);
 			memset(c->caus.count, 0, sizeof c->caus.count);
+			memset(c->guide.count, 0, sizeof c->guide.count);
 			for (int j = 0; j < CHUNK; j++)
 				trace_path(s, a, L, o, base + (uint64_t)ci * CHUNK + j, c, j);
 		}
 		/* Keep paths in index order until each map's last photon is stored. */
 		for (int ci = 0; ci < BATCH && !(gdone && cdone) && !oom; ci++) {
 			chunk *c = &ch[ci];
-			size_t at = 0, cat = 0;
+			size_t at = 0, cat = 0, gat = 0;
 			oom |= c->oom;
 			for (int j = 0; j < CHUNK && !(gdone && cdone) && !oom; j++) {
 				uint64_t take = c->glob.count[j], ctake = c->caus.count[j];
@@ -211,6 +223,7 @@ pm_shoot(const pm_scene *s, const pm_accel *a, const pm_lights *L,
 					if (take > want - stored)
 						take = want - stored;
 					oom |= append(&all, &stored, &cap, c->glob.p, at, take);
+					oom |= append(&guide, &nguide, &capguide, c->guide.p, gat, c->guide.count[j]);
 					if (stored >= want || emitted >= maxp)
 						gdone = 1;
 				}
@@ -224,6 +237,7 @@ pm_shoot(const pm_scene *s, const pm_accel *a, const pm_lights *L,
 				}
 				at += c->glob.count[j];
 				cat += c->caus.count[j];
+				gat += c->guide.count[j];
 			}
 		}
 		if (o->progress)
@@ -232,11 +246,13 @@ pm_shoot(const pm_scene *s, const pm_accel *a, const pm_lights *L,
 	for (int ci = 0; ci < BATCH; ci++) {
 		free(ch[ci].glob.p);
 		free(ch[ci].caus.p);
+		free(ch[ci].guide.p);
 	}
 	free(ch);
 	if (oom) {
 		free(all);
 		free(caus);
+		free(guide);
 		return pm_seterr(err, "out of memory while shooting photons");
 	}
 	out->p = all;
@@ -255,6 +271,15 @@ pm_shoot(const pm_scene *s, const pm_accel *a, const pm_lights *L,
 		o->caustic->h.count = ncaus;
 		o->caustic->h.emitted = cwant == 0 ? emitted : cemitted;
 		o->caustic->p = caus;
+	}
+	if (o->guide) {
+		o->guide->h = out->h;
+		o->guide->h.map = PM_MAP_GUIDE;
+		o->guide->h.version = 2;
+		o->guide->h.count = nguide;
+		o->guide->p = guide;
+	} else {
+		free(guide);
 	}
 	return 0;
 }

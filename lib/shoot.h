@@ -45,6 +45,9 @@ typedef struct pm_shoot_opts {
 	                      * (photonfile.h, PM_MAP_CAUSTIC) */
 	uint64_t ncaustic;   /* caustic photons to store; 0: those of the global
 	                      * map's light paths */
+	pm_photons *guide;   /* if set, also receives the guide map
+	                      * (photonfile.h, PM_MAP_GUIDE) of the global
+	                      * map's light paths, with their emitted count */
 } pm_shoot_opts;
 
 /* Fills out (photons, header: count, emitted, light_hash, time, seed; the

@@ -38,7 +38,7 @@ make_usage(void)
 	}
 	snprintf(usage, sizeof usage,
 	         "pm-render SCENE [MAP|-] [-e %s] [-k K] [--classical-norm k|k-1] [-p SAMPLES] "
-	         "[-l N] [--estimates pixel|sample] [-g RAYS [--caustic CMAP] [--irradiance EVERY] [--guided]] "
+	         "[-l N] [--estimates pixel|sample] [-g RAYS [--caustic CMAP] [--irradiance EVERY] [--guided]] [--guide GMAP] "
 	         "[-P I/N] [--consistent ALPHA] [-s SEED] [-t TIME] [-j THREADS] [-q] [--force] -o OUT.exr",
 	         names);
 	n = (size_t)snprintf(est_help, sizeof est_help, "estimator:");
@@ -49,7 +49,7 @@ make_usage(void)
 }
 
 enum { FORCE = OPT_LONG, MAX_SAMPLES, CLASSICAL_NORM, ESTIMATES, CAUSTIC, IRRADIANCE, GUIDED,
-       CONSISTENT };
+       CONSISTENT, GUIDE };
 
 static const opt opts[] = {
 	{ 'e', "estimator", "EST", est_help, est_default, 0 },
@@ -67,6 +67,10 @@ static const opt opts[] = {
 	{ GUIDED, "guided", NULL, "with -g, draw half the gather rays from the incoming "
 	  "directions of the photons near the point (Jensen 1995); the mean stays that of "
 	  "BSDF sampling", "BSDF sampling only", 0 },
+	{ GUIDE, "guide", "GMAP", "the guide map (pm-shoot --guide, built): camera paths go on "
+	  "from strong glossy surfaces in directions drawn half from the incoming directions "
+	  "of its photons near the point (Jensen 1995), half from the BSDF; the mean stays "
+	  "that of BSDF sampling", "BSDF sampling only", 0 },
 	{ 'j', "threads", "THREADS", "threads, 0 for all cores; the output does not depend on it", "0", 1 },
 	{ 'k', "neighbours", "K", "nearest photons per estimate", "50", 0 },
 	{ CLASSICAL_NORM, "classical-norm", "k|k-1", "the classical estimate's flux over pi r^2: of "
@@ -159,10 +163,10 @@ main(int argc, char **argv)
 {
 	pm_render_opts o = {.estimator = pm_estimator_find(est_default), .k = 50, .spp = 16,
 	                    .estimate_once = 1};
-	const char *out = NULL, *mapname = NULL, *cname = NULL;
+	const char *out = NULL, *mapname = NULL, *cname = NULL, *gname = NULL;
 	int gather_rays = 0, irr_every = 4, guided = 0;
 	pm_gather_opts go = {0};
-	pm_photons cmap = {0};
+	pm_photons cmap = {0}, gmap = {0};
 	pm_irradiance irr = {0};
 	int c, threads = 0, force = 0, have_time = 0, have_seed = 0, quiet = 0, max_spp = 65536;
 	uint32_t pass_i = 0, pass_n = 0;
@@ -189,6 +193,7 @@ main(int argc, char **argv)
 		case CAUSTIC: cname = optarg; break;
 		case IRRADIANCE: irr_every = (int)parse_int(optarg, 0, 1 << 20, "--irradiance", usage); break;
 		case GUIDED: guided = 1; break;
+		case GUIDE: gname = optarg; break;
 		case CONSISTENT:
 			alpha = parse_real(optarg, 0, 1, "--consistent", usage);
 			if (!(alpha > 0 && alpha < 1))
@@ -258,10 +263,14 @@ main(int argc, char **argv)
 	if (!o.light_samples)
 		o.light_samples = o.estimator->estimate && (o.estimator->needs & PM_NEEDS_MAP) ? 4 : 1;
 	check_output(usage, out, OUT_EXR, argv + optind, argc - optind);
-	if (cname) {
-		char *ins[2] = {(char *)mapname, (char *)cname};
-		check_output(usage, out, OUT_EXR, ins + 1, 1);
-		check_stdin_once(usage, ins, 2);
+	if (cname || gname) {
+		char *ins[3] = {(char *)mapname, (char *)cname, (char *)gname};
+		int nin = 0;
+		for (int i = 0; i < 3; i++)
+			if (ins[i])
+				ins[nin++] = ins[i];
+		check_output(usage, out, OUT_EXR, ins + (mapname != NULL), nin - (mapname != NULL));
+		check_stdin_once(usage, ins, nin);
 	}
 	pm_pass_apply(pass_i, pass_n, &o.seed, &have_seed, &time, &have_time);
 	set_threads(threads);
@@ -285,12 +294,24 @@ main(int argc, char **argv)
 	if (cname) {
 		read_map(cname, &cmap);
 		if (cmap.h.map != PM_MAP_CAUSTIC)
-			die("'%s': a global map where the caustic map belongs (pm-shoot --caustic makes one)", cname);
+			die("'%s': a %s map where the caustic map belongs (pm-shoot --caustic makes one)",
+			    cname, pm_map_name(cmap.h.map));
 		if (pm_photons_differ(&map, &cmap) & (PM_DIFFER_LIGHTS | PM_DIFFER_TIME) && !force)
 			die("'%s': caustic map of another scene or time than '%s'; --force to use it", cname, mapname);
 	}
 	if (mapname && map.h.map != PM_MAP_GLOBAL)
-		die("'%s': a caustic map where the global map belongs: give it as --caustic", mapname);
+		die("'%s': a %s map where the global map belongs: give it as --%s", mapname,
+		    pm_map_name(map.h.map), pm_map_name(map.h.map));
+	if (gname) {
+		read_map(gname, &gmap);
+		if (gmap.h.map != PM_MAP_GUIDE)
+			die("'%s': a %s map where the guide map belongs (pm-shoot --guide makes one)",
+			    gname, pm_map_name(gmap.h.map));
+		if ((gmap.h.light_hash != s.light_hash || gmap.h.time != time) && !force)
+			die("'%s': guide map of another scene or time than '%s'; --force to use it",
+			    gname, argv[optind]);
+		o.guide = &gmap;
+	}
 	if (pm_frame_build(&fr, &s, time, o.estimator->needs, &err) != 0)
 		die_err(&err);
 	if (gather_rays > 0) {
@@ -349,6 +370,10 @@ main(int argc, char **argv)
 		snprintf(buf, sizeof buf, "%" PRIu64, cmap.h.count);
 		setattr(&img, "pm.caustic_photons", buf);
 	}
+	if (gname) {
+		snprintf(buf, sizeof buf, "%" PRIu64, gmap.h.count);
+		setattr(&img, "pm.guide_photons", buf);
+	}
 	consistent_attrs(&img, alpha, o.shrink);
 	snprintf(buf, sizeof buf, "%016" PRIx64, pm_pass_id(s.view_hash, o.estimator->name,
 	                                                     o.seed, time, map.h.seeds));
@@ -360,6 +385,7 @@ main(int argc, char **argv)
 	pm_frame_free(&fr);
 	pm_photons_free(&map);
 	pm_photons_free(&cmap);
+	pm_photons_free(&gmap);
 	pm_irradiance_free(&irr);
 	pm_scene_free(&s);
 	return 0;

@@ -17,9 +17,9 @@
 
 static const char usage[] =
 	"pm-shoot SCENE [-n PHOTONS] [--light-paths random|sobol] [-P I/N] [-s SEED] [-t TIME] "
-	"[-j THREADS] [-o FILE|-] [--caustic CFILE [--caustic-photons N]] [-q]";
+	"[-j THREADS] [-o FILE|-] [--caustic CFILE [--caustic-photons N]] [--guide GFILE] [-q]";
 
-enum { MAX_PHOTONS = OPT_LONG, LIGHT_PATHS, CAUSTIC, CAUSTIC_PHOTONS };
+enum { MAX_PHOTONS = OPT_LONG, LIGHT_PATHS, CAUSTIC, CAUSTIC_PHOTONS, GUIDE };
 
 static const opt opts[] = {
 	{ 'n', "photons", "PHOTONS", "photons to store, 1e6 or 2.5e5 allowed", "200000", 0 },
@@ -34,6 +34,9 @@ static const opt opts[] = {
 	{ CAUSTIC_PHOTONS, "caustic-photons", "N", "with --caustic, go on shooting until "
 	  "CFILE holds N photons (it then counts its own emitted paths); caustics are "
 	  "sharp and take many photons", "0: those of FILE's paths", 0 },
+	{ GUIDE, "guide", "GFILE", "also write the photons the same light paths brought to "
+	  "strong glossy surfaces (after the first bounce; FILE has none there) to GFILE, "
+	  "a photon file with map=guide, for pm-render --guide", "none", 0 },
 	{ 'P', "pass", "I/N", "pass I of N: seed and time derived from I and N (see pm-shoot(1)); "
 	  "-s and -t, if given, override them", "no pass", 0 },
 	{ 'q', "quiet", NULL, "quiet: no warnings, no progress bar", NULL, 1 },
@@ -50,19 +53,37 @@ static const tool shoot = {
 	opts, NULL,
 };
 
+/* A map written beside the main output (--caustic, --guide). */
+typedef struct side_out {
+	const char *name;
+	pm_photons *ph;
+	pm_out o;
+} side_out;
+
+/* Drops the first n side outputs (opened, not committed) and dies. */
+static void
+abort_side(side_out *side, int n, pm_error *err)
+{
+	for (int i = 0; i < n; i++)
+		pm_out_abort(&side[i].o);
+	die_err(err);
+}
+
 int
 main(int argc, char **argv)
 {
 	pm_shoot_opts o = {.nphotons = 200000};
 	uint64_t max_photons = 100000000;
-	const char *out = "-", *cout = NULL;
+	const char *out = "-", *cout = NULL, *gout = NULL;
 	int c, threads = 0, quiet = 0, have_seed = 0, have_time = 0;
 	uint32_t pass_i = 0, pass_n = 0;
 	progress bar;
 	pm_scene s;
 	pm_frame fr;
-	pm_photons ph, caus;
-	pm_out fo, co;
+	pm_photons ph, caus, guide;
+	side_out side[2];
+	int nside = 0;
+	pm_out fo;
 	pm_error err;
 
 	opt_init(&shoot, argc, argv);
@@ -77,6 +98,7 @@ main(int argc, char **argv)
 		case 'n': o.nphotons = (uint64_t)parse_int(optarg, 0, 4000000000LL, "-n", usage); break;
 		case 'o': out = optarg; break;
 		case CAUSTIC: cout = optarg; break;
+		case GUIDE: gout = optarg; break;
 		case CAUSTIC_PHOTONS: o.ncaustic = (uint64_t)parse_int(optarg, 0, 4000000000LL, "--caustic-photons", usage); break;
 		case 'P':
 			if (pm_pass_parse(optarg, &pass_i, &pass_n, &err) != 0)
@@ -102,6 +124,13 @@ main(int argc, char **argv)
 		check_output(usage, cout, OUT_PHOTONS, argv + optind, 1);
 		if (strcmp(cout, "-") == 0 || strcmp(cout, out) == 0)
 			usage_err(usage, "--caustic: '%s' must be a file other than the output", cout);
+		side[nside++] = (side_out){cout, &caus, {0}};
+	}
+	if (gout) {
+		check_output(usage, gout, OUT_PHOTONS, argv + optind, 1);
+		if (strcmp(gout, "-") == 0 || strcmp(gout, out) == 0 || (cout && strcmp(gout, cout) == 0))
+			usage_err(usage, "--guide: '%s' must be a file other than the other outputs", gout);
+		side[nside++] = (side_out){gout, &guide, {0}};
 	}
 	pm_pass_apply(pass_i, pass_n, &o.seed, &have_seed, &o.time, &have_time);
 	set_threads(threads);
@@ -114,6 +143,7 @@ main(int argc, char **argv)
 	o.progress = progress_hook;
 	o.progress_arg = &bar;
 	o.caustic = cout ? &caus : NULL;
+	o.guide = gout ? &guide : NULL;
 	if (pm_shoot(&s, fr.accel, &fr.lights, &o, &ph, &err) != 0)
 		die_err(&err);
 	progress_end(&bar, ph.h.count);
@@ -123,36 +153,29 @@ main(int argc, char **argv)
 		     (unsigned long long)o.nphotons, (unsigned long long)ph.h.emitted);
 	if (pm_photons_add_history(&ph, cmdline(), &err) != 0)
 		die_err(&err);
-	/* Both outputs are written whole before either appears. */
-	if (cout) {
-		if (pm_photons_add_history(&caus, cmdline(), &err) != 0)
-			die_err(&err);
-		if (pm_out_open(&co, cout, &err) != 0)
-			die_err(&err);
-		if (pm_photons_write(&caus, co.f, co.path, &err) != 0) {
-			pm_out_abort(&co);
-			die_err(&err);
-		}
+	/* All outputs are written whole before any appears. */
+	for (int i = 0; i < nside; i++) {
+		if (pm_photons_add_history(side[i].ph, cmdline(), &err) != 0 ||
+		    pm_out_open(&side[i].o, side[i].name, &err) != 0)
+			abort_side(side, i, &err);
+		if (pm_photons_write(side[i].ph, side[i].o.f, side[i].o.path, &err) != 0)
+			abort_side(side, i + 1, &err);
 	}
-	if (pm_out_open(&fo, out, &err) != 0) {
-		if (cout)
-			pm_out_abort(&co);
-		die_err(&err);
-	}
+	if (pm_out_open(&fo, out, &err) != 0)
+		abort_side(side, nside, &err);
 	if (pm_photons_write(&ph, fo.f, fo.path, &err) != 0) {
 		pm_out_abort(&fo);
-		if (cout)
-			pm_out_abort(&co);
-		die_err(&err);
+		abort_side(side, nside, &err);
 	}
-	if (cout && pm_out_commit(&co, &err) != 0) {
-		pm_out_abort(&fo);
-		die_err(&err);
-	}
+	for (int i = 0; i < nside; i++)
+		if (pm_out_commit(&side[i].o, &err) != 0) {
+			pm_out_abort(&fo);
+			abort_side(side + i + 1, nside - i - 1, &err);
+		}
 	if (pm_out_commit(&fo, &err) != 0)
 		die_err(&err);
-	if (cout)
-		pm_photons_free(&caus);
+	for (int i = 0; i < nside; i++)
+		pm_photons_free(side[i].ph);
 	pm_photons_free(&ph);
 	pm_frame_free(&fr);
 	pm_scene_free(&s);

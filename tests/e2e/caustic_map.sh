@@ -88,4 +88,4 @@ check "refused merge wrote nothing" test ! -e x.pm
 expect_fail "caustic output must differ from -o" 2 "^pm-shoot: --caustic: 'same.pm' must be a file other than the output" pm-shoot -n 10 glass.pms --caustic same.pm -o same.pm
 expect_fail "caustic output not stdout" 2 "^pm-shoot: --caustic: '-' must be a file other than the output" pm-shoot -n 10 glass.pms --caustic - -o y.pm
 sed 's/^map=caustic$/map=both/' c.pm >badmap.pm
-expect_fail "bad map key refused" 1 "^pm-dump: 'badmap.pm': line .*: bad map 'both' (want global or caustic)$" pm-dump --stats badmap.pm
+expect_fail "bad map key refused" 1 "^pm-dump: 'badmap.pm': line .*: bad map 'both' (want global, caustic or guide)$" pm-dump --stats badmap.pm
