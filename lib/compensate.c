@@ -484,7 +484,11 @@ between(const pm_comp_scratch *sc, const cpoly *P, const cpoly *B, pm_dvec3 xo, 
  * unless it started inside: so where a list holds a solid met from behind,
  * it holds the rest of that solid's polygons in the cube too (each again
  * counting only from behind), and a front met first ends the ray there as
- * open. Appends to sc->bl from f0; returns the new length. */
+ * open. The polygon the ray starts on is not among them (skip, or for x's
+ * list those x lies on): a ray leaving a face's front never meets that face,
+ * and in a solid of several parts (a chair's seat, legs and back) x lies
+ * behind the planes of other parts' faces while outside them all. Appends
+ * to sc->bl from f0; returns the new length. */
 static int
 close_matter(pm_comp_scratch *sc, int f0, int skip)
 {
@@ -492,7 +496,7 @@ close_matter(pm_comp_scratch *sc, int f0, int skip)
 
 	for (int b = 0; b < sc->ng; b++) {
 		int in = 0, solid = 0;
-		if (b == skip)
+		if (b == skip || (skip < 0 && sc->g[b].xon))
 			continue;
 		for (int i = f0; i < n && !in; i++) {
 			int e = sc->bl[i];
