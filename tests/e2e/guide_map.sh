@@ -9,20 +9,9 @@
 . "$PM_TOP/tests/lib.sh"
 dump=$PM_BIN/../tests/tools/exrstat
 
-# A dark room lit only by a white patch of ceiling (a point light under a
-# shade); the camera looks at a strong glossy floor (exponent 400, with a
-# diffuse lobe) laid 1 mm above the room's own floor.
-cat >gs.pms <<'EOF'
-camera eye 0 1.2 1.0  look 0 0 -0.2  up 0 1 0  fov 50  size 32 24
-material dark diffuse albedo 0.05 0.05 0.05
-material white diffuse albedo 0.9 0.9 0.9
-material floor glossy kd 0.5 0.5 0.5 ks 0.3 0.3 0.3 exponent 400
-box dark -2 0 -3  2 2.5 3 inward
-quad floor -2 0.001 3  2 0.001 3  2 0.001 -3  -2 0.001 -3
-quad white -0.8 2.49 -0.8  0.8 2.49 -0.8  0.8 2.49 0.8  -0.8 2.49 0.8
-quad dark -0.5 2.2 -0.5  0.5 2.2 -0.5  0.5 2.2 0.5  -0.5 2.2 0.5
-pointlight 0 2.35 0 power 100 100 100
-EOF
+# A dark room lit by a patch of ceiling; the camera looks at its strong
+# glossy floor (tests/scenes/glossyroom.pms).
+cp "$PM_TOP/tests/scenes/glossyroom.pms" gs.pms
 pm-shoot -q -n 100000 -s 1 gs.pms --guide gd.pm -o g.pm
 pm-dump --stats gd.pm >gd.txt
 pm-dump --stats g.pm >g.txt
