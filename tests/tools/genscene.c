@@ -4,7 +4,8 @@
  * boxes and OBJ blocks resting on the floor, on rugs, on tables and on each
  * other (stacked, rotated, touching walls), open-bottom blocks (walls and
  * top, no bottom, as the published Cornell box blocks), tables with thin
- * tops on legs, partitions with gaps under or beside them, rugs a fraction
+ * tops on legs (as five boxes or as one OBJ of five boxes, a solid of
+ * several parts), partitions with gaps under or beside them, rugs a fraction
  * of a millimetre to 5 mm above the floor or a table (sometimes with a block
  * on them), low overhanging slabs, pictures a hair in front of a wall,
  * spheres resting on surfaces; diffuse or soft-glossy floors, sometimes a
@@ -46,6 +47,19 @@ next64(void)
 	return z ^ (z >> 31);
 }
 static double unif(void) { return (double)(next64() >> 11) * 0x1.0p-53; }
+/* How an item is written (not where it is) draws from a stream of its own,
+ * so that adding such a choice leaves every scene's geometry as it was. */
+static uint64_t form_state;
+static int
+form_chance(double p)
+{
+	uint64_t keep = rng_state, u;
+	rng_state = form_state;
+	u = next64();
+	form_state = rng_state;
+	rng_state = keep;
+	return (double)(u >> 11) * 0x1.0p-53 < p;
+}
 static double rnd(double a, double b) { return a + (b - a) * unif(); }
 static int irnd(int n) { return (int)(unif() * n); }
 static int chance(double p) { return unif() < p; }
@@ -242,43 +256,78 @@ emit_quad4(const char *m, const double p[4][3])
 }
 
 /* A prism standing on y0 up to y1 over the convex footprint (px, pz)[n]
- * (counter-clockwise seen from above), written as an OBJ file, with or
- * without its bottom face. Returns the file name. */
+ * (counter-clockwise seen from above). */
+typedef struct { int n; double px[8], pz[8], y0, y1; } prism;
+
+/* np prisms written as one OBJ file (one object: a solid of several parts
+ * when they are closed and touch, as a chair or table mesh is), with or
+ * without their bottom faces; what says what it is. */
 static void
-emit_prism_obj(const char *m, const double *px, const double *pz, int n, double y0, double y1, int bottom)
+emit_prisms_obj(const char *m, const prism *pr, int np, int bottom, const char *what)
 {
 	char name[64], path[4096];
 	FILE *f;
+	int base = 1;
 	snprintf(name, sizeof name, "mesh%d.obj", ++nmesh);
 	snprintf(path, sizeof path, "%s/%s", outdir, name);
 	if (!(f = fopen(path, "w"))) { fprintf(stderr, "genscene: cannot write '%s': %s\n", path, strerror(errno)); exit(1); }
-	fprintf(f, "# %s: a prism of %d sides, %s (genscene)\n", name, n, bottom ? "closed" : "open bottom");
-	for (int i = 0; i < n; i++)
-		fprintf(f, "v %.5f %.5f %.5f\n", q(px[i]), q(y0), q(pz[i]));
-	for (int i = 0; i < n; i++)
-		fprintf(f, "v %.5f %.5f %.5f\n", q(px[i]), q(y1), q(pz[i]));
-	/* The top face must be counter-clockwise seen from +y: by Newell's
-	 * normal, n_y = sum (z_i - z_j)(x_i + x_j) > 0 when the angle
-	 * atan2(z, x) decreases along the corners; the caller gives that
-	 * order. */
-	fprintf(f, "f");
-	for (int i = 0; i < n; i++)
-		fprintf(f, " %d", n + 1 + i);
-	fprintf(f, "\n");
-	for (int i = 0; i < n; i++) {
-		int j = (i + 1) % n;
-		/* side face: bottom i, bottom j, top j, top i is
-		 * counter-clockwise seen from outside (normal outward) */
-		fprintf(f, "f %d %d %d %d\n", i + 1, j + 1, n + 1 + j, n + 1 + i);
-	}
-	if (bottom) {
+	fprintf(f, "# %s: %s, %s (genscene)\n", name, what, bottom ? "closed" : "open bottom");
+	for (int k = 0; k < np; k++) {
+		const prism *P = &pr[k];
+		int n = P->n;
+		for (int i = 0; i < n; i++)
+			fprintf(f, "v %.5f %.5f %.5f\n", q(P->px[i]), q(P->y0), q(P->pz[i]));
+		for (int i = 0; i < n; i++)
+			fprintf(f, "v %.5f %.5f %.5f\n", q(P->px[i]), q(P->y1), q(P->pz[i]));
+		/* The top face must be counter-clockwise seen from +y: by
+		 * Newell's normal, n_y = sum (z_i - z_j)(x_i + x_j) > 0 when
+		 * the angle atan2(z, x) decreases along the corners; the caller
+		 * gives that order. */
 		fprintf(f, "f");
-		for (int i = n - 1; i >= 0; i--)
-			fprintf(f, " %d", i + 1);
+		for (int i = 0; i < n; i++)
+			fprintf(f, " %d", base + n + i);
 		fprintf(f, "\n");
+		for (int i = 0; i < n; i++) {
+			int j = (i + 1) % n;
+			/* side face: bottom i, bottom j, top j, top i is
+			 * counter-clockwise seen from outside (normal outward) */
+			fprintf(f, "f %d %d %d %d\n", base + i, base + j, base + n + j, base + n + i);
+		}
+		if (bottom) {
+			fprintf(f, "f");
+			for (int i = n - 1; i >= 0; i--)
+				fprintf(f, " %d", base + i);
+			fprintf(f, "\n");
+		}
+		base += 2 * n;
 	}
 	if (fclose(f)) { fprintf(stderr, "genscene: cannot write '%s': %s\n", path, strerror(errno)); exit(1); }
 	sb_printf(&geo, "mesh %s %s\n", name, m);
+}
+
+static void
+emit_prism_obj(const char *m, const double *px, const double *pz, int n, double y0, double y1, int bottom)
+{
+	prism P = { n, {0}, {0}, y0, y1 };
+	char what[32];
+	memcpy(P.px, px, (size_t)n * sizeof *px);
+	memcpy(P.pz, pz, (size_t)n * sizeof *pz);
+	snprintf(what, sizeof what, "a prism of %d sides", n);
+	emit_prisms_obj(m, &P, 1, bottom, what);
+}
+
+/* The box of half sizes hx, hz about (cx, cz), rotated by ang, from y0 to
+ * y1, as a prism (corners in emit_prisms_obj's order). */
+static prism
+box_prism(double cx, double cz, double hx, double hz, double ang, double y0, double y1)
+{
+	double ca = cos(ang), sa = sin(ang), u[4] = { -hx, hx, hx, -hx }, v[4] = { hz, hz, -hz, -hz };
+	prism P = { 4, {0}, {0}, y0, y1 };
+	for (int i = 0; i < 4; i++) {
+		P.px[i] = cx + u[i] * ca + v[i] * sa;
+		P.pz[i] = cz - u[i] * sa + v[i] * ca;
+	}
+	return P;
 }
 
 /* An open-bottom block of quads: four walls and a top (no bottom). */
@@ -413,16 +462,27 @@ item_table(void)
 	if (overlaps(&a))
 		return 0;
 	const char *m = diffuse_mat("m");
-	emit_box(m, cx, cz, hx, hz, ang, y0, y1);
+	/* Half the tables are one closed mesh of five boxes, as a modelled
+	 * table is: a solid of several parts, not five solids. */
+	int onemesh = form_chance(0.5);
+	prism part[5];
+	part[0] = box_prism(cx, cz, hx, hz, ang, y0, y1);
+	if (!onemesh)
+		emit_box(m, cx, cz, hx, hz, ang, y0, y1);
 	double ca = cos(ang), sa = sin(ang);
 	for (int i = 0; i < 4; i++) {
 		double u = (i & 1 ? 1 : -1) * (hx - inset - leg), v = (i & 2 ? 1 : -1) * (hz - inset - leg);
-		emit_box(m, cx + u * ca + v * sa, cz - u * sa + v * ca, leg, leg, ang, s->y, y0);
+		double lx = cx + u * ca + v * sa, lz = cz - u * sa + v * ca;
+		part[1 + i] = box_prism(lx, lz, leg, leg, ang, s->y, y0);
+		if (!onemesh)
+			emit_box(m, lx, lz, leg, leg, ang, s->y, y0);
 	}
+	if (onemesh)
+		emit_prisms_obj(m, part, 5, 1, "a table of five boxes");
 	add_aabb(&a);
 	add_support(cx, cz, hx, hz, ang, y1, "table");
-	sb_printf(&desc, "; table (top %.0f mm, %.0f cm high%s) on %s", t * 1000, ht * 100,
-	          inset == 0 ? ", flush legs" : "", sup_name(s));
+	sb_printf(&desc, "; table%s (top %.0f mm, %.0f cm high%s) on %s", onemesh ? " (one OBJ)" : "",
+	          t * 1000, ht * 100, inset == 0 ? ", flush legs" : "", sup_name(s));
 	return 1;
 }
 
@@ -666,6 +726,7 @@ main(int argc, char **argv)
 		return 1;
 	}
 	rng_state = seed * 0x2545f4914f6cdd1dull + 0x1234567;
+	form_state = seed * 0x9e3779b97f4a7c15ull + 0x7654321;
 	next64();
 
 	/* the room */
