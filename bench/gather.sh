@@ -3,7 +3,8 @@
 # against time on the Cornell box, the caustic scene (a glass and a mirror
 # sphere) and the room, whole image and edge band; and the caustic's energy
 # in a window in front of the glass sphere. Writes bench/results/gather.tsv,
-# bench/results/gather-caustic.tsv and bench/results/gather-SCENE.png.
+# bench/results/gather-caustic.tsv (every pass's window mean in
+# gather-caustic-passes.tsv) and bench/results/gather-SCENE.png.
 #
 # Usage: bench/gather.sh [BUILD_DIR]   (default build; make all-tests
 # first: it reads window means with tests/tools/exrstat)
@@ -13,9 +14,10 @@
 # photons per pass [50000], GATHER_RAYS gather rays per pixel [64],
 # GATHER_SIZE "W H" of the Cornell and caustic images [64 64] (the room's
 # height is 3/4 of it), GATHER_SPP camera samples per pixel [4]; for the
-# caustic part GATHER_CNMAX passes [16], GATHER_CPHOTONS [200000] and
-# GATHER_CCAUSTIC [100000]; BENCH_CACHE where references are kept
-# [BUILD_DIR/bench-cache].
+# caustic part GATHER_CNMAX passes [64], GATHER_CPHOTONS [200000],
+# GATHER_CCAUSTIC [100000] and GATHER_CREF path-traced passes of 1024 spp
+# for the window's reference [64, at least 2]; BENCH_CACHE where
+# references are kept [BUILD_DIR/bench-cache].
 #
 # Errors are pm-diff's against a path-traced reference, of the beauty and
 # of the indirect layer (everything but the emission and direct light of
@@ -36,7 +38,8 @@ bin=$B/bin
 cache=${BENCH_CACHE:-$B/bench-cache}
 PARTS=${GATHER_PARTS:-sweep caustic}
 NMAX=${GATHER_NMAX:-4} P=${GATHER_PHOTONS:-50000} C=${GATHER_CAUSTIC:-50000}
-CNMAX=${GATHER_CNMAX:-16} CP=${GATHER_CPHOTONS:-200000} CC=${GATHER_CCAUSTIC:-100000}
+CNMAX=${GATHER_CNMAX:-64} CP=${GATHER_CPHOTONS:-200000} CC=${GATHER_CCAUSTIC:-100000}
+CREF=${GATHER_CREF:-64}
 G=${GATHER_RAYS:-64} SPP=${GATHER_SPP:-4}
 set -- ${GATHER_SIZE:-64 64}
 W=$1 H=$2
@@ -86,9 +89,31 @@ reference() {
 		done
 		"$bin/pm-average" -q "$tmp"/ref-*.exr -o "$r.tmp.exr"
 		mv "$r.tmp.exr" "$r"
-		rm -f "$tmp"/ref-*.exr
+		# the passes stay beside it, for the caustic part's standard error
+		for i in 1 2 3 4 5 6 7 8; do
+			mv "$tmp/ref-$i.exr" "${r%.exr}-pass$i.exr"
+		done
 	fi
 	echo "$r"
+}
+
+# ref_passes NAME SCENE N: N path-traced passes of 1024 spp like
+# reference NAME's (REF-pass1.exr ... beside it; the first 8 are the ones
+# it averages, rendered again with the same seeds where a cache made before
+# they were kept lacks them); prints their names
+ref_passes() {
+	r=$(reference "$1" "$2")
+	i=1
+	while [ $i -le "$3" ]; do
+		f=${r%.exr}-pass$i.exr
+		if [ ! -s "$f" ]; then
+			log "reference for $1: pass $i of $3 (for the window's standard error)"
+			"$bin/pm-render" -q -e path -p 1024 -s "1000$i" "$2" -o "$f.tmp.exr"
+			mv "$f.tmp.exr" "$f"
+		fi
+		echo "$f"
+		i=$((i + 1))
+	done
 }
 
 # mean WIN IMG: the mean of R, G, B over the window X0,Y0,X1,Y1 (inclusive)
@@ -162,25 +187,56 @@ done
 ;; esac
 
 # The caustic the glass sphere focuses onto the floor in front of it
-# (x 36-50, y 53-63 of 64 x 64, scaled to the size): the window's mean
-# against the reference's, after 1, 2, 4 ... CNMAX passes, with more photons.
+# (x 36-50, y 53-63 of 64 x 64, scaled to the size): every pass's window
+# mean against the reference's, after 1, 2, 4 ... CNMAX passes (CNMAX
+# always), with more photons. ratio is the mean of the passes' ratios (the
+# ratio of their average), stderr its standard error (the passes' sample
+# standard deviation over sqrt(passes)). The window's reference is the mean
+# of CREF path-traced passes (the first 8 those of the sweep's reference
+# image), ref_stderr its standard error relative to it.
+# Every pass's window mean is in gather-caustic-passes.tsv (the reference's
+# as mode "reference").
 case " $PARTS " in *" caustic "*)
 cout=$res/gather-caustic.tsv
-printf 'mode\tphotons\tcaustic_photons\tpasses\twindow\tmean\treference\tratio\n' >"$cout"
+pout=$res/gather-caustic-passes.tsv
+printf 'mode\tphotons\tcaustic_photons\tpasses\twindow\tmean\treference\tratio\tstderr\tref_stderr\n' >"$cout"
+printf 'mode\tpass\twindow\tmean\tratio\n' >"$pout"
 sc=$(scene caustic "$W" "$H")
 ref=$(reference caustic "$sc")
 win=$((36 * W / 64)),$((53 * H / 64)),$((50 * W / 64)),$((H - 1))
-r=$(mean "$win" "$ref")
+i=1
+for f in $(ref_passes caustic "$sc" "$CREF"); do
+	printf 'reference\t%s\t%s\t%s\n' $i "$win" "$(mean "$win" "$f")"
+	i=$((i + 1))
+done >"$tmp/refm"
+# the reference's mean and relative standard error from its passes
+r=$(awk -F'\t' '{ n++; s += $4 } END { printf "%.9g", s / n }' "$tmp/refm")
+rse=$(awk -F'\t' -v m="$r" '{ n++; q += ($4 - m) ^ 2 } END { printf "%.5f", sqrt(q / (n - 1) / n) / m }' "$tmp/refm")
+awk -F'\t' -v OFS='\t' -v r="$r" '{ print $0, sprintf("%.5f", $4 / r) }' "$tmp/refm" >>"$pout"
+log "caustic window $win: reference mean $r (relative standard error $rse over $CREF passes; the 8-pass reference image's $(mean "$win" "$ref"))"
 for mode in $modes; do
-	log "caustic window: $mode, $CNMAX pass pairs of $CP (+ $CC caustic) photons"
+	case $mode in direct-*) cc=0 ;; *) cc=$CC ;; esac
+	log "caustic window: $mode, $CNMAX pass pairs of $CP (+ $cc caustic) photons"
 	passes "$sc" "$mode" "$CNMAX" "$CP" "$CC"
+	i=1
+	while [ $i -le "$CNMAX" ]; do
+		m=$(mean "$win" "$tmp/pass-$i.exr")
+		printf '%s\t%s\t%s\t%s\t%s\n' "$mode" $i "$win" "$m" \
+			"$(awk -v a="$m" -v b="$r" 'BEGIN { printf "%.5f", a / b }')"
+		i=$((i + 1))
+	done >"$tmp/m"
+	cat "$tmp/m" >>"$pout"
 	n=1
-	while [ $n -le "$CNMAX" ]; do
-		average $n >/dev/null
-		m=$(mean "$win" "$tmp/avg.exr")
-		case $mode in direct-*) cc=0 ;; *) cc=$CC ;; esac
-		printf '%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\n' "$mode" "$CP" "$cc" "$n" "$win" "$m" "$r" \
-			"$(awk -v a="$m" -v b="$r" 'BEGIN { printf "%.4f", a / b }')" >>"$cout"
+	while :; do
+		[ "$n" -gt "$CNMAX" ] && n=$CNMAX
+		head -n "$n" "$tmp/m" | awk -F'\t' -v OFS='\t' -v mode="$mode" -v cp="$CP" -v cc="$cc" \
+			-v win="$win" -v r="$r" -v rse="$rse" '
+			{ k++; s += $4; x += $5; q += $5 * $5 }
+			END { mr = x / k
+				if (k > 1) { v = (q - k * mr * mr) / (k - 1); if (v < 0) v = 0
+					se = sprintf("%.4f", sqrt(v / k)) } else se = "NA"
+				print mode, cp, cc, k, win, sprintf("%.9g", s / k), r, sprintf("%.4f", mr), se, rse }' >>"$cout"
+		[ "$n" -eq "$CNMAX" ] && break
 		n=$((n * 2))
 	done
 	rm -f "$tmp"/pass-*.exr "$tmp"/t-*
