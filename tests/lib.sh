@@ -19,9 +19,11 @@ expect_fail() {
 		[ "$(wc -l <stderr.txt)" -eq 2 ] && sed -n 2p stderr.txt | grep -q '^usage: '; }; then notok "$n" "want one stderr line, got: $(head -c 300 stderr.txt)"
 	else ok "$n"; fi
 }
-# num_near NAME VALUE WANT TOL : |VALUE - WANT| <= TOL (floats, via awk).
+# num_near NAME VALUE WANT TOL : |VALUE - WANT| <= TOL (floats, via awk); a
+# VALUE that is not a finite number (empty, nan, inf) fails.
 num_near() {
-	if awk -v a="$2" -v b="$3" -v t="$4" 'BEGIN { d = a - b; if (d < 0) d = -d; exit !(d <= t) }'; then ok "$1"
+	if printf '%s\n' "$2" | grep -Eq '^[-+]?([0-9]+\.?[0-9]*|\.[0-9]+)([eE][-+]?[0-9]+)?$' &&
+		awk -v a="$2" -v b="$3" -v t="$4" 'BEGIN { d = a - b; if (d < 0) d = -d; exit !(d <= t) }'; then ok "$1"
 	else notok "$1" "$2 not within $4 of $3"; fi
 }
 # kv FILE KEY : value of a "key: value" line.
