@@ -49,8 +49,9 @@ pm-render -q -s 2 s.pms map.pm -o file.exr
 pm-render -q -s 2 s.pms map.pm -o - >piped.exr
 pm-diff file.exr piped.exr >d.txt
 num_near "render -o - writes the same image" "$(kv d.txt max_abs)" 0 0
-pm-render -q -s 2 s.pms map.pm -o - | pm-average - b.exr -o avgp.exr
-pm-average file.exr b.exr -o avgf.exr
+pm-render -q -s 3 s.pms map.pm -o c.exr
+pm-render -q -s 2 s.pms map.pm -o - | pm-average - c.exr -o avgp.exr
+pm-average file.exr c.exr -o avgf.exr
 pm-diff avgp.exr avgf.exr >d.txt
 num_near "average reads - from a pipe" "$(kv d.txt max_abs)" 0 0
 pm-average -s - <a.exr >s.txt
