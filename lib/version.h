@@ -4,6 +4,6 @@
 #ifndef PM_VERSION_H
 #define PM_VERSION_H
 
-#define PM_VERSION "0.14"
+#define PM_VERSION "0.15"
 
 #endif
