@@ -155,18 +155,14 @@ walk(const ctx *c, void *sc, pm_vec3 o, pm_vec3 d, int depth, pm_vec3 beta, pm_v
 		if (c->o->guide && m->kind == PM_MAT_GLOSSY && m->strong) {
 			/* Only the diffuse lobe's light is spread out over the
 			 * hemisphere; the glossy lobe keeps its own samples. */
-			if (depth == 0 && pc->gvalid && pc->gpoly == h.poly) {
-				g = &pc->gd;
-			} else {
-				pm_guide_build(&gd, c->o->guide, h.p, n);
-				gd.share = 0.5f * pm_bsdf_diffuse_share(m);
-				g = &gd;
-				if (depth == 0) {
-					pc->gd = gd;
-					pc->gpoly = h.poly;
-					pc->gvalid = 1;
-				}
+			pm_guide *slot = depth == 0 ? &pc->gd : &gd;
+			if (!(depth == 0 && pc->gvalid && pc->gpoly == h.poly)) {
+				pm_guide_build(slot, c->o->guide, h.p, n);
+				slot->share = 0.5f * pm_bsdf_diffuse_share(m);
+				pc->gvalid |= depth == 0;
+				pc->gpoly = depth == 0 ? h.poly : pc->gpoly;
 			}
+			g = slot;
 		}
 		if (m->kind == PM_MAT_DIFFUSE || m->kind == PM_MAT_GLOSSY)
 			*here = pm_add(*here, pm_mul(beta, pm_direct_light(&c->dl, h.p, h.ng, n, wo, m, nl, g, r)));
@@ -286,7 +282,10 @@ pm_render(const pm_frame *f, const pm_photons *map, const pm_render_opts *o,
 				double size = 0;
 				long count = 0;
 				int nest = 0, nedge = 0;
-				pxcache pc = {0};
+				/* Not zeroed whole: the guide's histogram is read
+				 * only once built (gvalid). */
+				pxcache pc;
+				pc.valid = pc.rec = pc.gvalid = 0;
 				pc.allow = allow;
 				pc.allow_poly = allow_poly;
 				for (int k = 0; k < o->spp; k++) {
@@ -306,7 +305,7 @@ pm_render(const pm_frame *f, const pm_photons *map, const pm_render_opts *o,
 					}
 				}
 				allow = pc.rec && pc.rec_ok;
-				allow_poly = pc.rec_poly;
+				allow_poly = pc.rec ? pc.rec_poly : 0;
 				float inv = 1.0f / (float)o->spp;
 				pm_vec3 tot = pm_scale(pm_add(dsum, pm_add(isum, ssum)), inv);
 				float v[PM_RENDER_NCHAN] = {

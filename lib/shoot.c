@@ -25,8 +25,9 @@ typedef struct chunk {
 	int oom;
 } chunk;
 
+/* Appends ph to st as a photon of the chunk's path j. */
 static void
-push(chunk *c, stash *st, const pm_photon *ph)
+push(chunk *c, stash *st, int j, const pm_photon *ph)
 {
 	if (st->n == st->cap) {
 		size_t cap = st->cap ? 2 * st->cap : 256;
@@ -39,6 +40,7 @@ push(chunk *c, stash *st, const pm_photon *ph)
 		st->cap = cap;
 	}
 	st->p[st->n++] = *ph;
+	st->count[j]++;
 }
 
 const char *
@@ -93,27 +95,19 @@ trace_path(const pm_scene *s, const pm_accel *a, const pm_lights *L, const pm_sh
 		if (!pm_accel_hit(a, org, d, 0.0f, FLT_MAX, &h))
 			return;
 		m = &s->mats[s->objs[h.obj].material];
-		if (bounce > 0 && pm_mat_is_photon_surface(m)) {
+		/* After the first bounce a hit is kept: in the global (and the
+		 * caustic) map where view paths end, in the guide map where they
+		 * go on by sampling a lobe, not a delta (strong glossy; guide.h). */
+		int ends = pm_mat_is_photon_surface(m);
+		if (bounce > 0 && (ends || (o->guide && m->kind == PM_MAT_GLOSSY))) {
 			pm_photon ph;
 			pm_vec3 ns = pm_dot(h.ng, wo) >= 0 ? h.ng : pm_neg(h.ng);
 			pm_photon_pack(&ph, h.p, wo, ns, power);
-			push(c, &c->glob, &ph);
-			c->glob.count[j]++;
-			if (specular_only && o->caustic) {
-				push(c, &c->caus, &ph);
-				c->caus.count[j]++;
-			}
+			push(c, ends ? &c->glob : &c->guide, j, &ph);
+			if (ends && specular_only && o->caustic)
+				push(c, &c->caus, j, &ph);
 		}
-		/* Where the view path goes on by sampling the BSDF (a lobe, not
-		 * a delta), the guide map keeps what arrived: guide.h. */
-		if (bounce > 0 && o->guide && m->kind == PM_MAT_GLOSSY && m->strong) {
-			pm_photon ph;
-			pm_vec3 ns = pm_dot(h.ng, wo) >= 0 ? h.ng : pm_neg(h.ng);
-			pm_photon_pack(&ph, h.p, wo, ns, power);
-			push(c, &c->guide, &ph);
-			c->guide.count[j]++;
-		}
-		if (pm_mat_is_photon_surface(m))
+		if (ends)
 			specular_only = 0;
 		/* Pseudo-random: the roulette's number follows the BSDF's three,
 		 * drawn before the sample as it ends the path if that fails. */
