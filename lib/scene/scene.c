@@ -18,6 +18,7 @@
 #include "formats/photonfile.h"
 #include "scene/scene_build.h"
 #include "scene/scene_id.h"
+#include "scene/scene_limits.h"
 
 /* Bounds on what a scene may ask for; see formats/scene.md. */
 #define MAX_FILE (64u << 20)        /* scene file bytes */
@@ -219,6 +220,9 @@ st_camera(parser *p)
 	for (int k = 0; k < 5; k++)
 		if (!seen[k])
 			return perr(p, "camera: missing '%s'", words[k]);
+	pm_error e;
+	if (pm_limits_camera(c, &e))
+		return berr(p, &e);
 	pm_vec3 f = pm_sub(c->look, c->eye);
 	if (!(pm_len(f) > 0))
 		return perr(p, "camera: eye and look are the same point");
@@ -722,6 +726,9 @@ parse(parser *p, char *data, size_t len)
 		lit = pm_maxc(s->mats[s->objs[i].material].emit) > 0;
 	if (!lit)
 		return perr(p, "no light (add a pointlight or an object with an emitting material)");
+	pm_error e;
+	if (pm_limits_scene(s, &e))
+		return berr(p, &e);
 	for (int i = 0; i < s->nmats; i++) {
 		pm_material *m = &s->mats[i];
 		m->strong = m->kind == PM_MAT_MIRROR || m->kind == PM_MAT_GLASS

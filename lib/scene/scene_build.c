@@ -4,9 +4,11 @@
 #include "scene/scene_build.h"
 
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
+#include "scene/scene_limits.h"
 #include "scene/scene_poly.h"
 
 /* Bounds on what a scene may ask for; see formats/scene.md. */
@@ -85,6 +87,10 @@ pm_build_material(pm_scene_build *b, const pm_material *m, pm_error *err)
 {
 	if (b->s->nmats >= MAX_MATS)
 		return pm_seterr(err, "material: more than %d materials", MAX_MATS);
+	char what[80];
+	snprintf(what, sizeof what, "material '%s'", m->name);
+	if (pm_limits_material(m, what, err))
+		return -1;
 	return append(&b->s->mats, &b->cap_mats, &b->s->nmats, m, sizeof *m, err);
 }
 
@@ -93,6 +99,8 @@ pm_build_light(pm_scene_build *b, const pm_pointlight *l, pm_error *err)
 {
 	if (b->s->nlights >= MAX_LIGHTS)
 		return pm_seterr(err, "pointlight: more than %d point lights", MAX_LIGHTS);
+	if (pm_limits_light(l, err))
+		return -1;
 	return append(&b->s->lights, &b->cap_lights, &b->s->nlights, l, sizeof *l, err);
 }
 
@@ -211,10 +219,9 @@ pm_build_object(pm_scene_build *b, const pm_build_obj *ob, pm_error *err)
 		double w[3];
 		for (int k = 0; k < 3; k++)
 			w[k] = m[k][0] * x[0] + m[k][1] * x[1] + m[k][2] * x[2] + m[k][3];
-		pm_vec3 f = pm_v3((float)w[0], (float)w[1], (float)w[2]);
-		if (!pm_vfinite(f) || fabs(w[0]) > 3e38 || fabs(w[1]) > 3e38 || fabs(w[2]) > 3e38)
-			return pm_seterr(err, "%s: vertex coordinates out of range", ob->what);
-		s->verts[base + i] = f;
+		if (pm_limits_vertex(w, ob->motion, ob->what, err))
+			return -1;
+		s->verts[base + i] = pm_v3((float)w[0], (float)w[1], (float)w[2]);
 	}
 	s->nverts += ob->shape->nverts;
 

@@ -1,0 +1,145 @@
+/* scene_limits.c — the range of sizes pm resolves (scene_limits.h,
+ * formats/scene.md "Range"). Checks are made in double on the values as
+ * the scene will hold them (floats), so what passes here is what the ray
+ * caster, the kd-tree and the estimates see. */
+#include "scene/scene_limits.h"
+
+#include <math.h>
+
+static int
+coord_ok(double c)
+{
+	return fabs(c) <= PM_COORD_MAX;
+}
+
+static int
+vec_ok(pm_vec3 v)
+{
+	return coord_ok(v.x) && coord_ok(v.y) && coord_ok(v.z);
+}
+
+int
+pm_limits_vertex(const double w[3], pm_vec3 motion, const char *what, pm_error *err)
+{
+	/* At t = 0 and t = 1 (positions in between lie on the segment). */
+	for (int k = 0; k < 3; k++) {
+		double m = k == 0 ? motion.x : k == 1 ? motion.y : motion.z;
+		double a = (float)w[k];
+		if (!coord_ok(w[k]) || !coord_ok(a + m))
+			return pm_seterr(err, "%s: a vertex%s reaches %.3g, beyond the %g that pm resolves "
+			                 "(formats/scene.md, \"Range\")",
+			                 what, coord_ok(w[k]) ? " with 'move'" : "",
+			                 coord_ok(w[k]) ? a + m : w[k], PM_COORD_MAX);
+	}
+	return 0;
+}
+
+static int
+point_ok(pm_vec3 p, const char *stmt, const char *word, pm_error *err)
+{
+	if (vec_ok(p))
+		return 0;
+	return pm_seterr(err, "%s: %s (%.3g %.3g %.3g) is beyond the %g that pm resolves "
+	                 "(formats/scene.md, \"Range\")", stmt, word, p.x, p.y, p.z, PM_COORD_MAX);
+}
+
+int
+pm_limits_camera(const pm_camera_desc *c, pm_error *err)
+{
+	if (point_ok(c->eye, "camera", "eye", err) || point_ok(c->look, "camera", "look", err)
+	    || point_ok(c->up, "camera", "up", err))
+		return -1;
+	pm_dvec3 f = pm_dsub(pm_dfromf(c->look), pm_dfromf(c->eye));
+	double fl = pm_dlen(f), ul = pm_dlen(pm_dfromf(c->up));
+	double mag = fmax(pm_dlen(pm_dfromf(c->eye)), pm_dlen(pm_dfromf(c->look)));
+	/* The view direction is computed in float from look - eye. */
+	if (fl > 0 && !(fl >= PM_EXTENT_MIN && fl >= 1e-6 * mag))
+		return pm_seterr(err, "camera: look is only %.3g from eye (at least %g, and 1e-6 of "
+		                 "their magnitude; formats/scene.md, \"Range\")", fl, PM_EXTENT_MIN);
+	if (ul > 0 && !(ul >= PM_EXTENT_MIN))
+		return pm_seterr(err, "camera: up is %.3g long, shorter than %g "
+		                 "(formats/scene.md, \"Range\")", ul, PM_EXTENT_MIN);
+	if (!(c->fov >= (float)PM_FOV_MIN && c->fov <= (float)PM_FOV_MAX))
+		return pm_seterr(err, "camera: fov %.9g is outside %g to %g degrees "
+		                 "(formats/scene.md, \"Range\")",
+		                 c->fov, PM_FOV_MIN, PM_FOV_MAX);
+	return 0;
+}
+
+int
+pm_limits_material(const pm_material *m, const char *what, pm_error *err)
+{
+	if (!(pm_maxc(m->emit) <= PM_RADIANCE_MAX))
+		return pm_seterr(err, "%s: emit %.3g is more than the %g that pm carries in float "
+		                 "(formats/scene.md, \"Range\")", what, pm_maxc(m->emit), PM_RADIANCE_MAX);
+	return 0;
+}
+
+int
+pm_limits_light(const pm_pointlight *l, pm_error *err)
+{
+	if (point_ok(l->pos, "pointlight", "the position", err))
+		return -1;
+	if (!vec_ok(pm_add(l->pos, l->motion)) || !vec_ok(l->motion))
+		return pm_seterr(err, "pointlight: 'move' takes it beyond the %g that pm resolves "
+		                 "(formats/scene.md, \"Range\")", PM_COORD_MAX);
+	return 0;
+}
+
+static void
+grow_box(double lo[3], double hi[3], pm_vec3 p)
+{
+	for (int k = 0; k < 3; k++) {
+		double c = pm_vget(p, k);
+		lo[k] = fmin(lo[k], c);
+		hi[k] = fmax(hi[k], c);
+	}
+}
+
+int
+pm_limits_scene(const pm_scene *s, pm_error *err)
+{
+	double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
+	for (int o = 0; o < s->nobjs; o++) {
+		const pm_object *ob = &s->objs[o];
+		for (uint32_t i = ob->first_vert; i < ob->first_vert + ob->nverts; i++) {
+			grow_box(lo, hi, s->verts[i]);
+			grow_box(lo, hi, pm_add(s->verts[i], ob->motion));
+		}
+	}
+	for (int i = 0; i < s->nlights; i++) {
+		grow_box(lo, hi, s->lights[i].pos);
+		grow_box(lo, hi, pm_add(s->lights[i].pos, s->lights[i].motion));
+	}
+	double d = 0;
+	for (int k = 0; k < 3; k++)
+		d = fmax(d, hi[k] - lo[k]);
+	if (s->nverts > 0 && !(d >= PM_EXTENT_MIN))
+		return pm_seterr(err, "the scene is %.3g across, less than the %g that pm resolves "
+		                 "(scale it up; formats/scene.md, \"Range\")", d, PM_EXTENT_MIN);
+	/* Power against the extent: a point light's, and the whole scene's. */
+	double d2 = d * d, total[3] = {0, 0, 0};
+	for (int i = 0; i < s->nlights; i++) {
+		pm_vec3 pw = s->lights[i].power;
+		if (!(pm_maxc(pw) <= PM_RADIANCE_MAX * d2))
+			return pm_seterr(err, "pointlight %d of the file: power %.3g is more than %g times "
+			                 "the scene's extent squared (%.3g across; formats/scene.md, \"Range\")",
+			                 i + 1, pm_maxc(pw), PM_RADIANCE_MAX, d);
+		total[0] += pw.x, total[1] += pw.y, total[2] += pw.z;
+	}
+	for (uint32_t t = 0; t < s->ntris; t++) {
+		const pm_material *m = &s->mats[s->objs[s->poly_obj[s->tri_poly[t]]].material];
+		if (!(pm_maxc(m->emit) > 0))
+			continue;
+		pm_dvec3 a = pm_dfromf(s->verts[s->tris[t][0]]);
+		double area = 0.5 * pm_dlen(pm_dcross(pm_dsub(pm_dfromf(s->verts[s->tris[t][1]]), a),
+		                                      pm_dsub(pm_dfromf(s->verts[s->tris[t][2]]), a)));
+		double w = PM_PI * area * (m->emit_twosided ? 2 : 1);
+		total[0] += w * m->emit.x, total[1] += w * m->emit.y, total[2] += w * m->emit.z;
+	}
+	double tmax = fmax(total[0], fmax(total[1], total[2]));
+	if (!(tmax <= PM_POWER_MAX))
+		return pm_seterr(err, "the lights emit %.3g W in all, more than the %g that pm carries "
+		                 "in float (formats/scene.md, \"Range\")", tmax, PM_POWER_MAX);
+	return 0;
+}
