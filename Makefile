@@ -122,6 +122,19 @@ fuzz:
 		grep -E '^stat::number_of_executed_units|^stat::new_units_added|^SUMMARY|^==.*ERROR' $(FUZZ_B)/fuzz-$$t.log; \
 	done; exit $$st
 
+# make fuzz-scenes [N=200] [FIRST=1]: N scenes of extreme values from
+# tests/tools/genextreme (seeds FIRST..FIRST+N-1) through pm-shoot, pm-build
+# and pm-render with every estimator, on the ASan+UBSan tree
+# (tests/fuzz/scenes.sh): each must give finite images or a one-line
+# refusal naming FILE:LINE. Failing scenes are left in
+# $(FUZZ_B)/scenes-fail/seed-N; move them to tests/fuzz/regress/pipeline/,
+# which make check replays.
+N     ?= 200
+FIRST ?= 1
+fuzz-scenes:
+	@$(MAKE) --no-print-directory asan-tests
+	@sh tests/fuzz/scenes.sh $(B)-asan $(FIRST) $$(($(FIRST) + $(N) - 1)) $(FUZZ_B)/scenes-fail
+
 # make memcheck: the end-to-end tests with every program under valgrind
 # (tests/memcheck.sh); zero memory errors and zero definite leaks.
 memcheck:
@@ -129,7 +142,7 @@ memcheck:
 	@$(MAKE) --no-print-directory all-tests
 	@sh tests/memcheck.sh $(B)
 
-.PHONY: asan-tests fuzz memcheck
+.PHONY: asan-tests fuzz fuzz-scenes memcheck
 
 # Benchmarks (bench/, BENCHMARKS.md): make bench-quick (minutes), make bench
 # (the full sweep and the paper's workload). Not tests; they print numbers.

@@ -113,12 +113,27 @@ setray(struct RTCRay *r, pm_vec3 o, pm_vec3 d, float tmin, float tmax)
 	r->flags = 0;
 }
 
+/* Embree asserts, and so aborts, on a ray it cannot trace: an origin or
+ * direction beyond 1.844e18 or not a number, or a NaN bound. A scene in
+ * range (scene_limits.h) makes none; should a degenerate sample still give
+ * a NaN, it costs that ray, not the run. */
+static int
+traceable(pm_vec3 o, pm_vec3 d, float tmin, float tmax)
+{
+	const float big = 1.8e18f;
+	return fabsf(o.x) <= big && fabsf(o.y) <= big && fabsf(o.z) <= big
+		&& fabsf(d.x) <= big && fabsf(d.y) <= big && fabsf(d.z) <= big
+		&& !isnan(tmin) && !isnan(tmax);
+}
+
 int
 pm_accel_hit(const pm_accel *a, pm_vec3 o, pm_vec3 d, float tmin, float tmax, pm_hit *h)
 {
 	struct RTCIntersectContext ctx;
 	struct RTCRayHit rh;
 
+	if (!traceable(o, d, tmin, tmax))
+		return 0;
 	rtcInitIntersectContext(&ctx);
 	setray(&rh.ray, o, d, tmin, tmax);
 	rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
@@ -141,6 +156,8 @@ pm_accel_occluded(const pm_accel *a, pm_vec3 o, pm_vec3 d, float tmin, float tma
 	struct RTCIntersectContext ctx;
 	struct RTCRay r;
 
+	if (!traceable(o, d, tmin, tmax))
+		return 1;
 	rtcInitIntersectContext(&ctx);
 	setray(&r, o, d, tmin, tmax);
 	rtcOccluded1(a->scn, &ctx, &r);

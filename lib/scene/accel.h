@@ -26,7 +26,8 @@ int pm_accel_build(pm_accel **out, const pm_scene *s, const pm_vec3 *verts, pm_e
 void pm_accel_free(pm_accel *a);
 
 /* Closest hit of the ray o + t d, t in (tmin, tmax); returns 1 and fills *h,
- * or 0 for a miss. d must be unit length. */
+ * or 0 for a miss. d must be unit length. A ray Embree cannot take (a
+ * coordinate beyond 1.8e18 or NaN) misses, and is occluded below. */
 int pm_accel_hit(const pm_accel *a, pm_vec3 o, pm_vec3 d, float tmin, float tmax, pm_hit *h);
 
 /* 1 if anything blocks the segment o + t d, t in (tmin, tmax). */

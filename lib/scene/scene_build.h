@@ -45,8 +45,8 @@ typedef struct pm_build_obj {
 } pm_build_obj;
 
 /* Each appends one item to b->s; 0, or -1 with a message when a bound of
- * formats/scene.md is passed, out of memory, or (objects) a vertex is out of
- * float range or no face has area. Faces with repeated corners lose them,
+ * formats/scene.md is passed (its "Range": scene_limits.h), out of memory,
+ * or (objects) no face has area. Faces with repeated corners lose them,
  * faces without area are dropped, non-planar faces split into triangles. */
 int pm_build_material(pm_scene_build *b, const pm_material *m, pm_error *err);
 int pm_build_light(pm_scene_build *b, const pm_pointlight *l, pm_error *err);
