@@ -6,10 +6,24 @@
 
 #include <math.h>
 
+/* x at most (at least) bound, as written in a scene: the float of a bound
+ * may lie a rounding beyond it (1e30 as a float is 1.0000000150e30). */
+static int
+atmost(double x, double bound)
+{
+	return x <= bound * (1 + 1e-7);
+}
+
+static int
+atleast(double x, double bound)
+{
+	return x >= bound * (1 - 1e-7);
+}
+
 static int
 coord_ok(double c)
 {
-	return fabs(c) <= PM_COORD_MAX;
+	return atmost(fabs(c), PM_COORD_MAX);
 }
 
 static int
@@ -53,13 +67,13 @@ pm_limits_camera(const pm_camera_desc *c, pm_error *err)
 	double fl = pm_dlen(f), ul = pm_dlen(pm_dfromf(c->up));
 	double mag = fmax(pm_dlen(pm_dfromf(c->eye)), pm_dlen(pm_dfromf(c->look)));
 	/* The view direction is computed in float from look - eye. */
-	if (fl > 0 && !(fl >= PM_EXTENT_MIN && fl >= 1e-6 * mag))
+	if (fl > 0 && !(atleast(fl, PM_EXTENT_MIN) && fl >= 1e-6 * mag))
 		return pm_seterr(err, "camera: look is only %.3g from eye (at least %g, and 1e-6 of "
 		                 "their magnitude; formats/scene.md, \"Range\")", fl, PM_EXTENT_MIN);
-	if (ul > 0 && !(ul >= PM_EXTENT_MIN))
+	if (ul > 0 && !atleast(ul, PM_EXTENT_MIN))
 		return pm_seterr(err, "camera: up is %.3g long, shorter than %g "
 		                 "(formats/scene.md, \"Range\")", ul, PM_EXTENT_MIN);
-	if (!(c->fov >= (float)PM_FOV_MIN && c->fov <= (float)PM_FOV_MAX))
+	if (!(atleast(c->fov, PM_FOV_MIN) && atmost(c->fov, PM_FOV_MAX)))
 		return pm_seterr(err, "camera: fov %.9g is outside %g to %g degrees "
 		                 "(formats/scene.md, \"Range\")",
 		                 c->fov, PM_FOV_MIN, PM_FOV_MAX);
@@ -69,7 +83,7 @@ pm_limits_camera(const pm_camera_desc *c, pm_error *err)
 int
 pm_limits_material(const pm_material *m, const char *what, pm_error *err)
 {
-	if (!(pm_maxc(m->emit) <= PM_RADIANCE_MAX))
+	if (!atmost(pm_maxc(m->emit), PM_RADIANCE_MAX))
 		return pm_seterr(err, "%s: emit %.3g is more than the %g that pm carries in float "
 		                 "(formats/scene.md, \"Range\")", what, pm_maxc(m->emit), PM_RADIANCE_MAX);
 	return 0;
@@ -114,14 +128,14 @@ pm_limits_scene(const pm_scene *s, pm_error *err)
 	double d = 0;
 	for (int k = 0; k < 3; k++)
 		d = fmax(d, hi[k] - lo[k]);
-	if (s->nverts > 0 && !(d >= PM_EXTENT_MIN))
+	if (s->nverts > 0 && !atleast(d, PM_EXTENT_MIN))
 		return pm_seterr(err, "the scene is %.3g across, less than the %g that pm resolves "
 		                 "(scale it up; formats/scene.md, \"Range\")", d, PM_EXTENT_MIN);
 	/* Power against the extent: a point light's, and the whole scene's. */
 	double d2 = d * d, total[3] = {0, 0, 0};
 	for (int i = 0; i < s->nlights; i++) {
 		pm_vec3 pw = s->lights[i].power;
-		if (!(pm_maxc(pw) <= PM_RADIANCE_MAX * d2))
+		if (!atmost(pm_maxc(pw), PM_RADIANCE_MAX * d2))
 			return pm_seterr(err, "pointlight %d of the file: power %.3g is more than %g times "
 			                 "the scene's extent squared (%.3g across; formats/scene.md, \"Range\")",
 			                 i + 1, pm_maxc(pw), PM_RADIANCE_MAX, d);
@@ -138,7 +152,7 @@ pm_limits_scene(const pm_scene *s, pm_error *err)
 		total[0] += w * m->emit.x, total[1] += w * m->emit.y, total[2] += w * m->emit.z;
 	}
 	double tmax = fmax(total[0], fmax(total[1], total[2]));
-	if (!(tmax <= PM_POWER_MAX))
+	if (!atmost(tmax, PM_POWER_MAX))
 		return pm_seterr(err, "the lights emit %.3g W in all, more than the %g that pm carries "
 		                 "in float (formats/scene.md, \"Range\")", tmax, PM_POWER_MAX);
 	return 0;

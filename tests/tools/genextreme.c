@@ -13,8 +13,11 @@
  *
  * Deterministic from SEED (splitmix64 of its own). Most draws pick an
  * ordinary value and sometimes an extreme one, so that a scene usually
- * holds one or two extremes among ordinary things, as a user's would. */
+ * holds one or two extremes among ordinary things, as a user's would; half
+ * the scenes keep every extreme inside the range of formats/scene.md and
+ * so must render (the description says "tame" or "wild"). */
 #include <errno.h>
+#include <math.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -34,6 +37,10 @@ static double unif(void) { return (double)(next64() >> 11) * 0x1.0p-53; }
 static int chance(double p) { return unif() < p; }
 static int pick(int n) { return (int)(unif() * n); }
 #define PICK(a) (a[pick((int)(sizeof a / sizeof a[0]))])
+/* Half the scenes are tame: their extremes lie inside the range pm
+ * promises, so they must render; the wild half may pass it anywhere. */
+static int wild;
+#define DRAW(tame, wilder) (wild ? PICK(wilder) : PICK(tame))
 
 static char desc[512];
 static void
@@ -44,8 +51,8 @@ note(const char *what)
 }
 
 /* The length unit of the scene: the room is 2 of them across. */
-static const double units[] = {1e-30, 1e-20, 1e-10, 1e-8, 1e-7, 1e-3, 1, 1, 1, 1, 1, 1, 1e3, 1e9,
-	1e11, 1e12, 1e20, 1e30, 1e38};
+static const double units_tame[] = {1e-8, 1e-7, 1e-3, 1, 1, 1, 1, 1e3, 1e9, 1e11};
+static const double units_wild[] = {1e-30, 1e-20, 1e-10, 1e-8, 1e-3, 1, 1, 1, 1e12, 1e20, 1e30, 1e38};
 
 static FILE *out;
 static double U;        /* the unit, written into coordinates */
@@ -66,10 +73,11 @@ tailw(int may_move)
 	if (by_scale)
 		fprintf(out, " scale %.9g", U);
 	if (may_move && chance(0.15)) {
-		static const double mv[] = {0.1, 1, 1e10, 1e30, 3e38};
-		double m = PICK(mv);
+		static const double mv_tame[] = {0.1, 1, 1e-30};
+		static const double mv_wild[] = {0.1, 1, 1e10, 1e30, 3e38};
+		double m = DRAW(mv_tame, mv_wild);
 		/* 'move' is in world units: a move of m units, or an absolute one */
-		double w = chance(0.5) ? m * U : m;
+		double w = !wild || chance(0.5) ? m * U : m;
 		if (w > 3e38)
 			w = 3e38;
 		fprintf(out, " move %.9g 0 %.9g", w, -w / 2);
@@ -125,7 +133,9 @@ main(int argc, char **argv)
 		return 1;
 	}
 
-	U = PICK(units);
+	wild = chance(0.5);
+	note(wild ? "wild" : "tame");
+	U = DRAW(units_tame, units_wild);
 	by_scale = chance(0.3);
 	char b[64];
 	snprintf(b, sizeof b, "unit %g%s", U, by_scale ? " by scale" : "");
@@ -136,10 +146,11 @@ main(int argc, char **argv)
 		U = 3e38 / 5;
 
 	/* camera */
-	static const double fovs[] = {60, 60, 60, 60, 60, 60, 1e-30, 1e-6, 0.01, 179.9, 179.999, 179.999999, 1e-45};
-	double fov = PICK(fovs);
+	static const double fovs_tame[] = {60, 60, 60, 60, 1e-6, 0.01, 179.9, 179.999};
+	static const double fovs_wild[] = {60, 60, 60, 1e-30, 1e-45, 179.999999, 180 - 1e-5};
+	double fov = DRAW(fovs_tame, fovs_wild);
 	fprintf(out, "camera eye");
-	if (chance(0.05)) {
+	if (wild && chance(0.1)) {
 		fprintf(out, " 1e30 1 5");
 		note("eye 1e30 away");
 	} else {
@@ -175,8 +186,12 @@ main(int argc, char **argv)
 	snprintf(b, sizeof b, "ior %g", ior);
 	note(b);
 	fprintf(out, "material mi mirror reflect 1 1 1\n");
-	static const double emits[] = {1, 10, 1e20, 1e29, 1e31, 1e38, 3e38};
-	double em = PICK(emits);
+	static const double emits_tame[] = {1, 10, 1e10, 1e20, 1e29};
+	static const double emits_wild[] = {1, 10, 1e31, 1e38, 3e38};
+	double em = DRAW(emits_tame, emits_wild);
+	/* tame: all lights together stay under 1e30 W */
+	if (!wild && em * U * U > 1e28)
+		em = 1e28 / (U * U);
 	fprintf(out, "material lamp diffuse albedo %s emit %.9g %.9g %.9g%s\n",
 	        white ? "1 1 1" : "0.5 0.5 0.5", em, em, em, chance(0.3) ? " twosided" : "");
 
@@ -225,8 +240,9 @@ main(int argc, char **argv)
 			co(-0.8); co(0.01); co(0.5); co(0.2); co(0.01); co(0.6); co(-0.3); co(0.01); co(-0.2);
 			break;
 		default: {
-			static const double far[] = {0.5, 0.5, 0.5, 1e30, 3e38, 1e-30};
-			double big = PICK(far);
+			static const double far_tame[] = {0.5, 0.5, 0.5, 1e-30};
+			static const double far_wild[] = {0.5, 1e30, 3e38, 1e-30};
+			double big = DRAW(far_tame, far_wild);
 			int ply = chance(0.5);
 			mesh_file(dir, i, ply, big);
 			fprintf(out, "mesh m%d.%s %s", i, ply ? "ply" : "obj", m);
@@ -244,7 +260,11 @@ main(int argc, char **argv)
 	}
 
 	/* one of the shapes, now and then */
-	if (chance(0.25)) {
+	if (!wild && chance(0.15)) {
+		/* in range, though the room is then far below the scene's detail */
+		fprintf(out, "box wall -1e12 -1e12 -1e12 1e12 -1e11 1e12\n");
+		note("slab 1e12");
+	} else if (wild && chance(0.25)) {
 		switch (pick(4)) {
 		case 0:
 			fprintf(out, "box wall -1e30 -1e30 -1e30 1e30 -1e29 1e30\n");
@@ -266,15 +286,19 @@ main(int argc, char **argv)
 	}
 
 	/* lights */
-	static const double powers[] = {10, 10, 100, 1e20, 1e29, 1e31, 1e38, 3e38};
+	static const double powers_tame[] = {10, 10, 100, 1e20, 1e29};
+	static const double powers_wild[] = {10, 1e20, 1e31, 1e38, 3e38};
 	int npl = chance(0.7) ? 1 + pick(3) : 0;
 	for (int i = 0; i < npl; i++) {
-		double pw = PICK(powers);
+		double pw = DRAW(powers_tame, powers_wild);
+		/* tame: in watts per unit squared, all lights under 1e30 W */
+		if (!wild)
+			pw = fmin(pw * U * U, 1e29);
 		fprintf(out, "pointlight");
 		co(0.3 * i - 0.3); co(1.9); co(0);
 		fprintf(out, " power %.9g %.9g %.9g", pw, pw, pw);
 		if (chance(0.1))
-			fprintf(out, " move %.9g 0 0", chance(0.5) ? 1e30 : 0.1 * U);
+			fprintf(out, " move %.9g 0 0", wild && chance(0.5) ? 1e30 : 0.1 * U);
 		fprintf(out, "\n");
 		if (pw > 1e3) {
 			snprintf(b, sizeof b, "power %g", pw);
