@@ -94,6 +94,9 @@ pm_limits_light(const pm_pointlight *l, pm_error *err)
 {
 	if (point_ok(l->pos, "pointlight", "the position", err))
 		return -1;
+	if (!atmost(pm_maxc(l->power), PM_POWER_MAX))
+		return pm_seterr(err, "pointlight: power %.3g is more than the %g W that pm carries "
+		                 "in float (formats/scene.md, \"Range\")", pm_maxc(l->power), PM_POWER_MAX);
 	if (!vec_ok(pm_add(l->pos, l->motion)) || !vec_ok(l->motion))
 		return pm_seterr(err, "pointlight: 'move' takes it beyond the %g that pm resolves "
 		                 "(formats/scene.md, \"Range\")", PM_COORD_MAX);

@@ -45,8 +45,12 @@ sed -i 's/^camera.*/camera eye 0 0 1  look 0 0 0  up 0 1 0  fov 60  size 12 9/' 
 expect_fail "a scene 2e-10 across: refused at the last line" 1 '^pm-shoot: tiny.pms:7: the scene is 2e-10 across' \
 	pm-shoot -q -n 100 tiny.pms -o out.pm
 room 1 1e31 '' >power.pms
-expect_fail "a point light over 1e30 W" 1 '^pm-shoot: power.pms:7: pointlight 1 of the file: power 1e+31' \
+expect_fail "a point light over 1e30 W: refused at its line" 1 '^pm-shoot: power.pms:6: pointlight: power 1e+31' \
 	pm-shoot -q -n 100 power.pms -o out.pm
+room 0.01 1e27 '' >power2.pms
+expect_fail "a point light over 1e30 W per extent squared: refused" 1 \
+	'^pm-shoot: power2.pms:7: pointlight 1 of the file: power 1e+27 is more than 1e+30 times' \
+	pm-shoot -q -n 100 power2.pms -o out.pm
 room 1 10 'material hot diffuse albedo 0.5 0.5 0.5 emit 1e31 0 0' >emit.pms
 expect_fail "emit over 1e30: refused at the material" 1 "^pm-shoot: emit.pms:7: material 'hot': emit 1e+31" \
 	pm-shoot -q -n 100 emit.pms -o out.pm

@@ -1,7 +1,8 @@
 #!/bin/sh
 # scenes.sh — extreme scenes through the whole pipeline (issue 24): each
-# scene goes through pm-shoot, pm-build and pm-render with every estimator
-# of -e (and final gathering), and must end, within a time bound, either
+# scene goes through pm-shoot (with caustic and guide maps, at a shutter
+# time near 1), pm-build (and its density control) and pm-render with every
+# estimator of -e (and final gathering with both maps), and must end, within a time bound, either
 # with images whose pixels are all finite or with pm-shoot's one-line
 # refusal "pm-shoot: FILE:LINE: ..." (exit 1, no output), which pm-render
 # must then give too; a generated scene marked "tame" (every extreme
@@ -51,9 +52,10 @@ drill() {
 	# in a copy: saved cases stay as they are
 	rm -rf "$work/case" && cp -r "$2" "$work/case" || exit 9
 	( cd "$work/case" || exit 9
-	run pm-shoot -q -n "$N" -s 1 scene.pms -o p.pm
+	# pass 8 of 8: a shutter time near 1, where 'move' has moved things
+	run pm-shoot -q -n "$N" -P 8/8 scene.pms -o p.pm --caustic c.pm --guide g.pm
 	if [ "$rc" -eq 1 ] && refusal pm-shoot scene.pms && [ ! -e p.pm ]; then
-		run pm-render -q -p 1 -e path scene.pms -o out-path.exr
+		run pm-render -q -p 1 -P 8/8 -e path scene.pms -o out-path.exr
 		if [ "$rc" -eq 1 ] && refusal pm-render scene.pms && [ ! -e out-path.exr ]; then
 			case $name in *"(tame"*)
 				echo "not ok - $name: in range, yet refused: $(cut -c1-200 "$work/err")"; exit 1 ;;
@@ -63,13 +65,16 @@ drill() {
 		echo "not ok - $name: pm-shoot refused, pm-render -e path exit $rc: $(head -c 200 "$work/err")"; exit 1
 	fi
 	[ "$rc" -eq 0 ] || { echo "not ok - $name: pm-shoot exit $rc: $(head -c 300 "$work/err")"; exit 1; }
-	run pm-build -q p.pm -o m.pm
-	[ "$rc" -eq 0 ] || { echo "not ok - $name: pm-build exit $rc: $(head -c 300 "$work/err")"; exit 1; }
+	for b in "p.pm -o m.pm" "c.pm -o cm.pm" "g.pm -o gm.pm" "--density scene.pms p.pm -o dm.pm"; do
+		run pm-build -q $b
+		[ "$rc" -eq 0 ] || { echo "not ok - $name: pm-build $b: exit $rc: $(head -c 300 "$work/err")"; exit 1; }
+	done
 	for e in classical compensated photons path gather; do
 		case $e in
-		path) run pm-render -q -p 1 -e path scene.pms -o out-$e.exr ;;
-		gather) run pm-render -q -p 1 -g 2 scene.pms m.pm -o out-$e.exr ;;
-		*) run pm-render -q -p 1 -e $e scene.pms m.pm -o out-$e.exr ;;
+		path) run pm-render -q -p 1 -P 8/8 -e path scene.pms -o out-$e.exr ;;
+		gather) run pm-render -q -p 1 -P 8/8 -g 2 --caustic cm.pm --guide gm.pm scene.pms m.pm -o out-$e.exr ;;
+		compensated) run pm-render -q -p 1 -P 8/8 -e $e scene.pms dm.pm -o out-$e.exr ;;
+		*) run pm-render -q -p 1 -P 8/8 -e $e scene.pms m.pm -o out-$e.exr ;;
 		esac
 		[ "$rc" -eq 0 ] || { echo "not ok - $name: pm-render -e $e exit $rc: $(head -c 300 "$work/err")"; exit 1; }
 		finite out-$e.exr || { echo "not ok - $name: pm-render -e $e: pixels not finite: $(tr '\n' ' ' <"$work/stat")"; exit 1; }
