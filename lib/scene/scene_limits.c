@@ -138,7 +138,8 @@ pm_limits_scene(const pm_scene *s, pm_error *err)
 	double d2 = d * d, total[3] = {0, 0, 0};
 	for (int i = 0; i < s->nlights; i++) {
 		pm_vec3 pw = s->lights[i].power;
-		if (!atmost(pm_maxc(pw), PM_RADIANCE_MAX * d2))
+		/* (with no geometry, nothing is lit) */
+		if (s->nverts > 0 && !atmost(pm_maxc(pw), PM_RADIANCE_MAX * d2))
 			return pm_seterr(err, "pointlight %d of the file: power %.3g is more than %g times "
 			                 "the scene's extent squared (%.3g across; formats/scene.md, \"Range\")",
 			                 i + 1, pm_maxc(pw), PM_RADIANCE_MAX, d);

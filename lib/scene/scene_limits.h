@@ -19,9 +19,10 @@
  * side): below it areas of photon-estimate discs and the light's distance
  * squared leave float's normal range (1.2e-38) for usual photon counts. */
 #define PM_EXTENT_MIN 1e-9
-/* Field of view in degrees: below, a pixel's angle is lost in the float of
- * the view direction; above, tan(fov / 2) in float is no longer monotone. */
-#define PM_FOV_MIN 1e-6
+/* Field of view in degrees: below, the whole image spans fewer than 30 float
+ * spacings of the view direction (6e-8 rad); above, tan(fov / 2) in float
+ * nears its pole, which 180 as a float passes (a negative tangent). */
+#define PM_FOV_MIN 1e-4
 #define PM_FOV_MAX 179.999
 /* Emitted radiance (emit), a point light's power over the scene's extent
  * squared, and the scene's total power, per channel: far below float's

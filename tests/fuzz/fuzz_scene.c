@@ -1,9 +1,9 @@
 /* fuzz_scene.c — fuzz target for the scene parser (pm_scene_load in
  * lib/scene/scene.c, formats/scene.md). Whatever the bytes, it must return 0 or
  * -1 with a one-line "FILE:LINE: message" (or a message naming the file);
- * an accepted scene must satisfy the invariants scene.h promises. Two small
- * meshes (cube.obj, tri.off) sit beside the scene so that mesh lines have
- * something to load. */
+ * an accepted scene must satisfy the invariants scene.h promises and lie
+ * within the range of formats/scene.md. Two small meshes (cube.obj,
+ * tri.off) sit beside the scene so that mesh lines have something to load. */
 #define _GNU_SOURCE
 #include <math.h>
 #include <stdio.h>
@@ -12,6 +12,7 @@
 
 #include "fuzz.h"
 #include "scene/scene.h"
+#include "scene/scene_limits.h"
 
 static void
 require(int cond, const char *what)
@@ -38,6 +39,14 @@ meshes(void)
 	done = 1;
 }
 
+/* Within formats/scene.md's "Range" (up to a float's rounding). */
+static int
+in_range(pm_vec3 v)
+{
+	const double r = PM_COORD_MAX * (1 + 1e-6);
+	return fabs(v.x) <= r && fabs(v.y) <= r && fabs(v.z) <= r;
+}
+
 static void
 check_scene(const pm_scene *s)
 {
@@ -62,6 +71,16 @@ check_scene(const pm_scene *s)
 	}
 	for (int o = 0; o < s->nobjs; o++)
 		require(s->objs[o].material >= 0 && s->objs[o].material < s->nmats, "object without material");
+	for (int o = 0; o < s->nobjs; o++) {
+		const pm_object *ob = &s->objs[o];
+		for (uint32_t i = ob->first_vert; i < ob->first_vert + ob->nverts && i < s->nverts; i++)
+			require(in_range(s->verts[i]) && in_range(pm_add(s->verts[i], ob->motion)),
+			        "a vertex beyond the range");
+	}
+	for (int i = 0; i < s->nlights; i++)
+		require(in_range(s->lights[i].pos) && in_range(pm_add(s->lights[i].pos, s->lights[i].motion)),
+		        "a point light beyond the range");
+	require(in_range(s->camera.eye) && in_range(s->camera.look), "the camera beyond the range");
 }
 
 int

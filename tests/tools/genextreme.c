@@ -146,8 +146,8 @@ main(int argc, char **argv)
 		U = 3e38 / 5;
 
 	/* camera */
-	static const double fovs_tame[] = {60, 60, 60, 60, 1e-6, 0.01, 179.9, 179.999};
-	static const double fovs_wild[] = {60, 60, 60, 1e-30, 1e-45, 179.999999, 180 - 1e-5};
+	static const double fovs_tame[] = {60, 60, 60, 60, 1e-4, 0.01, 179.9, 179.999};
+	static const double fovs_wild[] = {60, 60, 1e-6, 1e-30, 1e-45, 179.999999, 180 - 1e-5};
 	double fov = DRAW(fovs_tame, fovs_wild);
 	fprintf(out, "camera eye");
 	if (wild && chance(0.1)) {

@@ -56,7 +56,7 @@ TEST(camera_bounds)
 	CHECK(pm_limits_camera(&c, &e) == -1);
 	c.fov = (float)PM_FOV_MIN;
 	CHECK(pm_limits_camera(&c, &e) == 0);
-	c.fov = 0.999999e-6f;
+	c.fov = (float)(PM_FOV_MIN * 0.999999);
 	CHECK(pm_limits_camera(&c, &e) == -1);
 	c = camera();
 	c.eye = pm_v3(0, 0, 0);
