@@ -1,13 +1,13 @@
 #!/bin/sh
 # scenes.sh — extreme scenes through the whole pipeline (issue 24): each
 # scene goes through pm-shoot (with caustic and guide maps, at a shutter
-# time near 1), pm-build (and its density control) and pm-render with every
-# estimator of -e (and final gathering with both maps), and must end, within a time bound, either
-# with images whose pixels are all finite or with pm-shoot's one-line
-# refusal "pm-shoot: FILE:LINE: ..." (exit 1, no output), which pm-render
-# must then give too; a generated scene marked "tame" (every extreme
-# inside the range of formats/scene.md) must render. Prints "ok - " /
-# "not ok - " lines.
+# time near 1), pm-build (and its density control), pm-render with every
+# estimator of -e (and final gathering with both maps) and pm-tonemap, and
+# must end, within a time bound, either with images whose pixels are all
+# finite or with pm-shoot's one-line refusal "pm-shoot: FILE:LINE: ..."
+# (exit 1, no output), which pm-render must then give too; a generated
+# scene marked "tame" (every extreme inside the range of formats/scene.md)
+# must render. Prints "ok - " / "not ok - " lines.
 #
 # Usage: scenes.sh BUILD_DIR SEED_FIRST SEED_LAST [KEEP_DIR]
 #        scenes.sh BUILD_DIR --cases DIR...
@@ -79,6 +79,9 @@ drill() {
 		[ "$rc" -eq 0 ] || { echo "not ok - $name: pm-render -e $e exit $rc: $(head -c 300 "$work/err")"; exit 1; }
 		finite out-$e.exr || { echo "not ok - $name: pm-render -e $e: pixels not finite: $(tr '\n' ' ' <"$work/stat")"; exit 1; }
 	done
+	# and the preview of one of them
+	run pm-tonemap out-compensated.exr -o out.png
+	[ "$rc" -eq 0 ] || { echo "not ok - $name: pm-tonemap exit $rc: $(head -c 300 "$work/err")"; exit 1; }
 	echo "ok - $name: clean images" )
 }
 
