@@ -13,7 +13,7 @@ B="$PM_BIN/.."
 # 1e-8 across with exponent 1e30 and a mesh vertex at 1e-30; a closed room
 # 1e11 across with albedo 1 and fov 0.01; and one wild scene (fov 1e-45,
 # refused). More: make fuzz-scenes N=...
-sh "$scenes" "$B" --cases "$PM_TOP"/tests/fuzz/regress/pipeline/*
+sh "$scenes" "$B" --cases "$PM_TOP"/tests/fuzz/regress/pipeline/*/
 for s in 9 33 55 47 4; do
 	sh "$scenes" "$B" "$s" "$s"
 done
