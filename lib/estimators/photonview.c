@@ -54,9 +54,11 @@ pm_photonview_image(const pm_est_in *in, const pm_camera *cam, pm_image *img, pm
 		py = (long)y;
 		d = pm_scale(v, 1.0f / dist);
 		/* Depth test: the camera sees the photon if the first surface
-		 * along the ray to it is where the photon lies. */
+		 * along the ray to it is where the photon lies (within the ray
+		 * offset's scale, not a length of its own, which a scene 1e-9
+		 * across would see through). */
 		if (!pm_accel_hit(a, cam->eye, d, 0.0f, FLT_MAX, &h) ||
-		    fabsf(h.t - dist) > 1e-3f * dist + 1e-6f)
+		    fabsf(h.t - dist) > 1e-3f * dist + pm_accel_eps(a, p))
 			continue;
 		m = &s->mats[s->objs[h.obj].material];
 		wo = pm_neg(d);

@@ -67,12 +67,12 @@ pm_limits_camera(const pm_camera_desc *c, pm_error *err)
 	double fl = pm_dlen(f), ul = pm_dlen(pm_dfromf(c->up));
 	double mag = fmax(pm_dlen(pm_dfromf(c->eye)), pm_dlen(pm_dfromf(c->look)));
 	/* The view direction is computed in float from look - eye. */
-	if (fl > 0 && !(atleast(fl, PM_EXTENT_MIN) && fl >= 1e-6 * mag))
+	if (fl > 0 && !(atleast(fl, PM_DIRECTION_MIN) && fl >= 1e-6 * mag))
 		return pm_seterr(err, "camera: look is only %.3g from eye (at least %g, and 1e-6 of "
-		                 "their magnitude; formats/scene.md, \"Range\")", fl, PM_EXTENT_MIN);
-	if (ul > 0 && !atleast(ul, PM_EXTENT_MIN))
+		                 "their magnitude; formats/scene.md, \"Range\")", fl, PM_DIRECTION_MIN);
+	if (ul > 0 && !atleast(ul, PM_DIRECTION_MIN))
 		return pm_seterr(err, "camera: up is %.3g long, shorter than %g "
-		                 "(formats/scene.md, \"Range\")", ul, PM_EXTENT_MIN);
+		                 "(formats/scene.md, \"Range\")", ul, PM_DIRECTION_MIN);
 	if (!(atleast(c->fov, PM_FOV_MIN) && atmost(c->fov, PM_FOV_MAX)))
 		return pm_seterr(err, "camera: fov %.9g is outside %g to %g degrees "
 		                 "(formats/scene.md, \"Range\")",

@@ -19,6 +19,9 @@
  * side): below it areas of photon-estimate discs and the light's distance
  * squared leave float's normal range (1.2e-38) for usual photon counts. */
 #define PM_EXTENT_MIN 1e-9
+/* Shortest look - eye and up: the camera squares and normalizes them in
+ * float, 1e-24 and up still normal numbers. */
+#define PM_DIRECTION_MIN 1e-12
 /* Field of view in degrees: below, the whole image spans fewer than 30 float
  * spacings of the view direction (6e-8 rad); above, tan(fov / 2) in float
  * nears its pole, which 180 as a float passes (a negative tangent). */

@@ -60,9 +60,9 @@ TEST(camera_bounds)
 	CHECK(pm_limits_camera(&c, &e) == -1);
 	c = camera();
 	c.eye = pm_v3(0, 0, 0);
-	c.look = pm_v3(0, 0, -1e-9f);
+	c.look = pm_v3(0, 0, -1e-12f);
 	CHECKF(pm_limits_camera(&c, &e) == 0, "%s", e.msg);
-	c.look = pm_v3(0, 0, -0.999e-9f);
+	c.look = pm_v3(0, 0, -0.999e-12f);
 	CHECK(pm_limits_camera(&c, &e) == -1);
 	/* 1e-6 of the magnitude: look 0.5 from an eye at 1e6 is too close */
 	c.eye = pm_v3(1e6f, 0, 0);
@@ -70,6 +70,12 @@ TEST(camera_bounds)
 	CHECK(pm_limits_camera(&c, &e) == -1);
 	c.look = pm_v3(1e6f, 0, 2);
 	CHECK(pm_limits_camera(&c, &e) == 0);
+	c = camera();
+	c.up = pm_v3(0, 1e-12f, 0);
+	CHECKF(pm_limits_camera(&c, &e) == 0, "%s", e.msg);
+	c.up = pm_v3(0, 0.999e-12f, 0);
+	CHECK(pm_limits_camera(&c, &e) == -1);
+	CHECKF(!strncmp(e.msg, "camera: up is", 13), "%s", e.msg);
 }
 
 TEST(emit_bound)
