@@ -384,3 +384,24 @@ pmi_disk_mesh(pmi_shape *s, double r, double ri, double h, double phimax)
 	s->start[1] = N;
 	return 0;
 }
+
+int
+pmi_metal_f0(const char *sym, double f0[3])
+{
+	/* From the metals' measured complex indices of refraction at the sRGB
+	 * primaries' wavelengths (Fresnel at normal incidence). */
+	static const struct { const char *m; double r, g, b; } tab[] = {
+		{"Au", 1.000, 0.766, 0.336}, {"Ag", 0.972, 0.960, 0.915}, {"Cu", 0.955, 0.638, 0.538},
+		{"Al", 0.913, 0.922, 0.924}, {"CuZn", 0.910, 0.778, 0.423}, {"Cr", 0.550, 0.556, 0.554},
+		{"Ni", 0.660, 0.609, 0.526}, {"Ti", 0.542, 0.497, 0.449}, {"Fe", 0.562, 0.565, 0.578},
+		{"Pt", 0.673, 0.637, 0.585}, {"W", 0.504, 0.498, 0.478}, {"Hg", 0.781, 0.779, 0.779},
+	};
+	for (size_t i = 0; i < sizeof tab / sizeof *tab; i++)
+		if (!strcmp(sym, tab[i].m)) {
+			f0[0] = tab[i].r;
+			f0[1] = tab[i].g;
+			f0[2] = tab[i].b;
+			return 0;
+		}
+	return -1;
+}

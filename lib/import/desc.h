@@ -135,6 +135,11 @@ const char *pmi_where(const pmi_desc *d, pmi_src src, char *buf, size_t n);
 int pmi_err(const pmi_desc *d, pmi_src src, pm_error *err, const char *fmt, ...)
 	__attribute__((format(printf, 4, 5)));
 
+/* Reflectance at normal incidence, linear RGB, of the metal with chemical
+ * symbol sym (Au, Ag, Cu, Al, CuZn, Cr, Ni, Ti, Fe, Pt, W, Hg); -1 if
+ * unknown. */
+int pmi_metal_f0(const char *sym, double f0[3]);
+
 /* 4x4 affine transforms, row-major, acting on column vectors. */
 typedef struct pmi_mat4 { double m[4][4]; } pmi_mat4;
 pmi_mat4 pmi_identity(void);

@@ -321,27 +321,15 @@ pstring(plist *pl, const char *name, const char *def)
 	return p && p->nstr > 0 ? p->str[0] : def;
 }
 
-/* Reflectance at normal incidence of the metals pbrt-v4 names
- * ("metal-Au-eta"), as linear sRGB: from the metals' measured complex
- * indices at the primaries' wavelengths. */
+/* pbrt-v4 names metals' spectra "metal-Au-eta", "metal-Au-k". */
 static int
 metal_f0(const char *name, double f0[3])
 {
-	static const struct { const char *m; double r, g, b; } tab[] = {
-		{"Au", 1.000, 0.766, 0.336}, {"Ag", 0.972, 0.960, 0.915},
-		{"Cu", 0.955, 0.638, 0.538}, {"Al", 0.913, 0.922, 0.924},
-		{"CuZn", 0.910, 0.778, 0.423}, {"MgO", 0.070, 0.070, 0.070},
-		{"TiO2", 0.180, 0.180, 0.180},
-	};
-	for (size_t i = 0; i < sizeof tab / sizeof *tab; i++) {
-		char buf[64];
-		snprintf(buf, sizeof buf, "metal-%s-", tab[i].m);
-		if (strncmp(name, buf, strlen(buf)) == 0) {
-			f0[0] = tab[i].r; f0[1] = tab[i].g; f0[2] = tab[i].b;
-			return 0;
-		}
-	}
-	return -1;
+	char sym[16];
+
+	if (sscanf(name, "metal-%15[^-]-", sym) != 1)
+		return -1;
+	return pmi_metal_f0(sym, f0);
 }
 
 /* A spectrum-valued parameter as RGB. Returns 1 if found (rgb, a constant
