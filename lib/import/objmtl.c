@@ -141,7 +141,7 @@ read_mtl(objr *R, const char *path, pmi_src from)
 		    mm->spec[0] + mm->spec[1] + mm->spec[2] > 0)
 			mm->kind = PMI_MAT_CONDUCTOR;
 		if (mm->kind == PMI_MAT_DIELECTRIC && mm->alpha == -1)
-			pmi_note_add(R->d, mm->src, "material '%s': transparency (d, Tr or illum) taken as smooth glass", mm->name);
+			pmi_note_add(R->d, mm->src, "material '%s' (mtl): transparency (d, Tr or illum) taken as smooth glass", mm->name);
 		mm->alpha = 0;
 	}
 	return 0;
