@@ -165,6 +165,14 @@ torture:
 	@KNOWN=$(KNOWN) sh tests/torture/report.sh $(SCENES) 1 $(TORTURE_OUT)
 .PHONY: torture
 
+# make check-scenes (not part of make check): pm-import on the public scenes
+# of ../shared/scenes, when that directory exists, and pm's path tracer on
+# each against the reference image shipped with it (tests/public/scenes.sh).
+check-scenes: deps
+	@$(MAKE) --no-print-directory $(TOOLS) $(B)/tests/tools/exrblocks
+	@sh tests/public/scenes.sh $(B)
+.PHONY: check-scenes
+
 # make check-cluster (as root; not part of make check): the SLURM fan-out,
 # examples/fanout/slurm.sh, on a throwaway one-node cluster (tests/cluster/,
 # tests/cluster.sh), at most 15 minutes.

@@ -818,7 +818,7 @@ inline_mesh(parser *P, lexer *L, plist *pl, pmi_src at, const char *what, int pe
 }
 
 static int
-do_shape(parser *P, lexer *L, const char *type, plist *pl, pmi_src at)
+shape_body(parser *P, lexer *L, const char *type, plist *pl, pmi_src at)
 {
 	pmi_shape s;
 	float *N = NULL;
@@ -920,6 +920,22 @@ do_shape(parser *P, lexer *L, const char *type, plist *pl, pmi_src at)
 		return pmi_err(P->d, at, P->err, "unknown shape '%s'", type);
 	r = finish_mesh(P, L, &s, N, at);
 	free(N);
+	return r;
+}
+
+/* pbrt-v4 ignores area lights on the shapes of an object definition (its
+ * instances do not emit), so pm-import does too. */
+static int
+do_shape(parser *P, lexer *L, const char *type, plist *pl, pmi_src at)
+{
+	int area = P->gs.area, r;
+
+	if (P->cur_obj >= 0 && area) {
+		pmi_note_add(P->d, at, "area light on a shape of an object instance: it does not emit (as in pbrt)");
+		P->gs.area = 0;
+	}
+	r = shape_body(P, L, type, pl, at);
+	P->gs.area = area;
 	return r;
 }
 
@@ -1301,6 +1317,11 @@ directive(parser *P, lexer *L, token *t)
 				if (pfind(&pl, "filename"))
 					pmi_note_add(P->d, at, "AreaLightSource: image (filename) dropped, L used");
 			}
+		} else if (!strcmp(d, "Integrator")) {
+			double md = pfloat(&pl, "maxdepth", 5);
+			if (md < 64)
+				pmi_note_add(P->d, at, "Integrator maxdepth %g: pm follows paths up to 64 bounces "
+				             "(brighter where light interreflects)", md);
 		} else if (!strcmp(d, "MakeNamedMedium"))
 			pmi_note_add(P->d, at, "medium '%s': participating media dropped", a.s);
 		else if (!strcmp(d, "Attribute"))

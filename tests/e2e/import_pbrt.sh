@@ -120,24 +120,32 @@ for l in spot distant infinite; do
 done
 
 # Instances, includes, named coordinate systems and TransformBegin/End: a
-# lamp defined once, included, instanced at +x twice (one instance moved
-# out of view): the lamp on the left as before, once.
-{ echo 'AreaLightSource "diffuse" "rgb L" [ 3 3 3 ]'
+# black square defined once in an included file, instanced at +x in front
+# of a lamp wall (L 3) and once out of view: the wall is hidden on the left
+# only. (pbrt ignores area lights inside instances; so does pm-import.)
+{ echo 'Material "diffuse" "rgb reflectance" [ 0 0 0 ]'
+  echo 'AreaLightSource "diffuse" "rgb L" [ 9 9 9 ]'
   echo 'Shape "trianglemesh" "point3 P" [ -0.5 -0.5 0  0.5 -0.5 0  0.5 0.5 0  -0.5 0.5 0 ] "integer indices" [ 0 1 2  0 2 3 ]'; } >part.pbrt
 { cam plain 48 32
   echo 'CoordinateSystem "origin"'
-  echo 'ObjectBegin "lamp"'
+  echo 'AttributeBegin AreaLightSource "diffuse" "rgb L" [ 3 3 3 ]'
+  echo 'Shape "trianglemesh" "point3 P" [ -9 -9 -1  9 -9 -1  9 9 -1  -9 9 -1 ] "integer indices" [ 0 1 2  0 2 3 ]'
+  echo 'AttributeEnd'
+  echo 'ObjectBegin "blocker"'
   echo 'Include "part.pbrt"'
   echo 'ObjectEnd'
-  echo 'TransformBegin Translate 1 0 0 ObjectInstance "lamp" TransformEnd'
+  echo 'TransformBegin Translate 1 0 0 ObjectInstance "blocker" TransformEnd'
   echo 'Translate 0 100 0'
-  echo 'ObjectInstance "lamp"'
+  echo 'ObjectInstance "blocker"'
   echo 'CoordSysTransform "origin"'
   echo 'Shape "sphere" "float radius" 0.001'; } >inst.pbrt
-pm-import -q inst.pbrt -o inst/scene.pms
+pm-import inst.pbrt -o inst/scene.pms 2>notes.txt
 pm-render -q -e path -p 4 inst/scene.pms -o inst.exr
-num_near "an included, instanced lamp at +x: on the left, reads 3" "$(px inst.exr 15,16)" 3 1e-4
-check "two instances flattened: two lamp meshes" test "$(grep -c '^mesh ' inst/scene.pms)" -eq 2
+num_near "an included square instanced at +x hides the lamp wall on the left" "$(px inst.exr 15,16)" 0 0
+num_near "... and only there: the wall reads 3 on the right" "$(px inst.exr 32,16)" 3 1e-4
+check "two instances flattened: three meshes in all" test "$(grep -c '^mesh ' inst/scene.pms)" -eq 3
+check "the area light inside the object noted as not emitting" \
+	grep -q "^pm-import: part.pbrt:3: area light on a shape of an object instance" notes.txt
 
 # Materials: each type maps by its rule (README), reported where approximate.
 { cam plain 16 16; echo "$lamp"
