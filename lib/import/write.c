@@ -37,6 +37,28 @@ f0_of(double eta)
 	return r * r;
 }
 
+/* The share of diffuse light inside a coat of relative ior eta that the
+ * coat reflects back in (total internal reflection included): the cosine-
+ * weighted hemispherical mean of Fresnel's reflectance from inside. */
+static double
+internal_reflectance(double eta)
+{
+	enum { N = 2048 };
+	double sum = 0;
+
+	for (int i = 0; i < N; i++) {
+		double ci = (i + 0.5) / N, si2 = 1 - ci * ci;
+		double st2 = eta * eta * si2, F = 1;   /* inside to outside: n_t / n_i = 1 / eta */
+		if (st2 < 1) {
+			double ct = sqrt(1 - st2);
+			double rs = (eta * ci - ct) / (eta * ci + ct), rp = (ci - eta * ct) / (ci + eta * ct);
+			F = 0.5 * (rs * rs + rp * rp);
+		}
+		sum += F * 2 * ci / N;
+	}
+	return sum;
+}
+
 typedef struct pm_mat {
 	int src;             /* desc material */
 	double emit[3];
@@ -172,16 +194,20 @@ material_line(wctx *w, const pm_mat *pmm, char *line, size_t n, int first)
 			snprintf(what, sizeof what, "diffuse reflection kept, diffuse transmission %.3g dropped", m->trans[1]);
 		break;
 	case PMI_MAT_COATED: {
-		double f0 = f0_of(m->eta);
+		/* Light enters the coat (1 - F0), the base reflects rho, a share
+		 * Fi of it is reflected back in each time it meets the coat from
+		 * below: rho (1 - F0)(1 - Fi) / (1 - rho Fi) leaves. */
+		double f0 = f0_of(m->eta), fi = internal_reflectance(m->eta);
 		e = blinn_exponent(m->alpha);
 		for (int c = 0; c < 3; c++) {
-			a[c] = clamp01(m->color[c], &cl) * (1 - f0);
+			double rho = clamp01(m->color[c], &cl);
+			a[c] = rho * (1 - f0) * (1 - fi) / (1 - rho * fi);
 			b[c] = f0;
 		}
 		snprintf(line, n, "material %s glossy kd %.9g %.9g %.9g ks %.9g %.9g %.9g exponent %.9g%s\n", nm,
 		         a[0], a[1], a[2], b[0], b[1], b[2], e, tail);
-		snprintf(what, sizeof what, "diffuse x (1 - F0) plus a Blinn lobe of F0 = %.3g, exponent %.4g (alpha %.3g)",
-		         f0, e, m->alpha);
+		snprintf(what, sizeof what, "diffuse under a coat (internal reflectance %.3g) plus a Blinn lobe of "
+		         "F0 = %.3g, exponent %.4g (alpha %.3g)", fi, f0, e, m->alpha);
 		break;
 	}
 	case PMI_MAT_CONDUCTOR:
