@@ -173,6 +173,15 @@ check-scenes: deps
 	@sh tests/public/scenes.sh $(B)
 .PHONY: check-scenes
 
+# make check-blender (as root; not part of make check): Debian's blender,
+# scenes built from bpy primitives, exported by tools/pm-blender.py and
+# rendered by pm (tests/blender/).
+check-blender:
+	@sh mk/deps.sh blender
+	@$(MAKE) --no-print-directory all-tests
+	@PM_SUITE=tests/blender sh tests/run.sh $(B)
+.PHONY: check-blender
+
 # make check-cluster (as root; not part of make check): the SLURM fan-out,
 # examples/fanout/slurm.sh, on a throwaway one-node cluster (tests/cluster/,
 # tests/cluster.sh), at most 15 minutes.

@@ -14,6 +14,8 @@ memcheck) pkgs="valgrind" ;;
 bench) pkgs="gnuplot-nox libnanoflann-dev" ;;
 # `deps.sh cluster` (make check-cluster): SLURM and its authentication daemon.
 cluster) pkgs="slurm-wlm munge" ;;
+# `deps.sh blender` (make check-blender): Blender, which runs the exporter.
+blender) pkgs="blender" ;;
 esac
 missing=
 for p in $pkgs; do

@@ -54,7 +54,7 @@ scene smaller 32 48 >s.xml
 for s in x y s; do
 	pm-import -q $s.xml -o $s/scene.pms 2>err.txt
 	check "$s: imports ($(head -c 200 err.txt))" test -s $s/scene.pms
-	pm-render -q -e path -p 4 $s/scene.pms -o $s.exr
+	pm-render -q -e path -p 64 $s/scene.pms -o $s.exr
 done
 num_near "lookat: lamp at +x seen on the right, reads its radiance 3" "$(px x.exr 37,16)" 3 1e-4
 num_near "lookat: nothing on the left" "$(px x.exr 10,16)" 0 0

@@ -35,7 +35,7 @@ AttributeEnd'
 for s in plain flip; do
 	pm-import -q $s.pbrt -o $s/scene.pms 2>err.txt
 	check "$s: imports ($(head -c 200 err.txt))" test -s $s/scene.pms
-	pm-render -q -e path -p 4 $s/scene.pms -o $s.exr
+	pm-render -q -e path -p 64 $s/scene.pms -o $s.exr
 done
 num_near "plain LookAt (left-handed): lamp at +x seen on the left, reads L x scale" "$(px plain.exr 15,16)" 3 1e-4
 num_near "plain LookAt: nothing on the right" "$(px plain.exr 32,16)" 0 0
@@ -51,7 +51,7 @@ num_near "plain: the lamp is 8.79 px wide (fov 40 vertical in 48x32)" \
 pm-import -q tall.pbrt -o tall/scene.pms
 fov=$(sed -n 's/^camera .* fov \([0-9.e+-]*\) .*/\1/p' tall/scene.pms)
 num_near "portrait: fov on the shorter (horizontal) axis, vertical 57.265" "$fov" 57.2651 0.001
-pm-render -q -e path -p 4 tall/scene.pms -o tall.exr
+pm-render -q -e path -p 64 tall/scene.pms -o tall.exr
 num_near "portrait: lamp at columns 2.8-11.6 (left), reads 3" "$(px tall.exr 7,24)" 3 1e-4
 num_near "portrait: the lamp is 8.79 px wide" \
 	"$(awk -v m="$(win tall.exr 0,24,32,25)" 'BEGIN { print m * 32 / 3 }')" 8.79 0.15
