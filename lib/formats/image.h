@@ -9,6 +9,7 @@
 #define PM_IMAGE_H
 
 #include <stddef.h>
+#include <stdint.h>
 
 #include "base/err.h"
 
@@ -25,6 +26,13 @@ typedef struct pm_image {
 	int nattr;
 	pm_attr *attr;
 } pm_image;
+
+/* Limits a reader trusts before allocating: 256 channels, 2^30 samples
+ * (4 GiB of floats), and PM_MAX_PIXELS pixels (base/maxpixels.h). */
+#define PM_IMAGE_MAX_CHANNELS 256
+#define PM_IMAGE_MAX_SAMPLES  ((int64_t)1 << 30)
+int pm_image_check_size(int64_t w, int64_t h, int64_t nchan, pm_error *err);
+int pm_image_check_name(const char *name, pm_error *err);
 
 /* Allocates a w x h image with the given channels, all zero. */
 int pm_image_init(pm_image *img, int w, int h, int nchan,
