@@ -549,8 +549,9 @@ bsdf(mreader *M, const xnode *b, pmi_material *m)
 				m->spec[0] = m->spec[1] = m->spec[2] = 0.9;
 				pmi_note_add(M->d, b->src, "conductor material '%s' unknown: grey 0.9", mat);
 			}
-		} else if (!mat && !prop(M, b, "eta"))
-			;   /* Mitsuba 3's default: "none", a perfect reflector */
+		}
+		/* Otherwise Mitsuba 3's default material "none": a perfect
+		 * reflector (spec stays 1). */
 		if (pcolor(M, b, "specular_reflectance", sr, NULL, 0) < 0)
 			return -1;
 		for (int c = 0; c < 3; c++)
@@ -662,43 +663,6 @@ quads(pmi_shape *s, const float *v, int nv, const uint32_t *q, int nq)
 }
 
 static int
-obj_geometry(mreader *M, const char *path, pmi_shape *s, pmi_src at)
-{
-	pmi_desc tmp;
-	pm_error e;
-
-	pmi_init(&tmp);
-	if (pmi_read_obj(path, &tmp, &e)) {
-		pmi_free(&tmp);
-		return pmi_err(M->d, at, M->err, "%s", e.msg);
-	}
-	size_t nv = 0, nf = 0, nc = 0;
-	for (size_t i = 0; i < tmp.nshapes; i++) {
-		nv += tmp.shapes[i].nv;
-		nf += tmp.shapes[i].nface;
-		nc += tmp.shapes[i].start[tmp.shapes[i].nface];
-	}
-	if (pmi_mesh_alloc(s, nv, nf, nc, 0)) {
-		pmi_free(&tmp);
-		return pm_seterr(M->err, "out of memory");
-	}
-	size_t ov = 0, of = 0, oc = 0;
-	for (size_t i = 0; i < tmp.nshapes; i++) {
-		const pmi_shape *t = &tmp.shapes[i];
-		memcpy(s->v + 3 * ov, t->v, 3 * t->nv * sizeof *t->v);
-		for (size_t f = 0; f < t->nface; f++)
-			s->start[of + f + 1] = (uint32_t)(oc + t->start[f + 1]);
-		for (size_t c = 0; c < t->start[t->nface]; c++)
-			s->idx[oc + c] = (uint32_t)(ov + t->idx[c]);
-		ov += t->nv;
-		of += t->nface;
-		oc += t->start[t->nface];
-	}
-	pmi_free(&tmp);
-	return 0;
-}
-
-static int
 shape(mreader *M, const xnode *n)
 {
 	const char *type = attr(M, n, "type");
@@ -720,8 +684,8 @@ shape(mreader *M, const xnode *n)
 		if (resolve(M, fn, path, sizeof path))
 			return pmi_err(M->d, n->src, M->err, "path too long");
 		if (type[0] == 'o') {
-			if (obj_geometry(M, path, &s, n->src))
-				return -1;
+			if (pmi_read_obj_mesh(path, &s, &e))
+				return pmi_err(M->d, n->src, M->err, "%s", e.msg);
 		} else if (pmi_ply_read(path, &s, &N, &e))
 			return pmi_err(M->d, n->src, M->err, "%s", e.msg);
 		free(N);

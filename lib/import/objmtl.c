@@ -31,6 +31,7 @@ typedef struct objr {
 	uint32_t *fidx; size_t nidx, capidx;
 	uint32_t *fstart; size_t nface, capface;
 	int run_line;
+	int geometry_only;   /* materials ignored (Mitsuba's obj shapes) */
 } objr;
 
 static int
@@ -194,7 +195,8 @@ end_run(objr *R, int file)
 			snprintf(m->type, sizeof m->type, "default");
 			m->color[0] = m->color[1] = m->color[2] = 0.8;
 			R->default_mat = (int)R->d->nmats - 1;
-			pmi_note_add(R->d, s->src, "faces without usemtl: grey diffuse 0.8");
+			if (!R->geometry_only)
+				pmi_note_add(R->d, s->src, "faces without usemtl: grey diffuse 0.8");
 		}
 		s = &R->d->shapes[R->d->nshapes - 1];
 		s->mat = R->default_mat;
@@ -204,8 +206,8 @@ end_run(objr *R, int file)
 	return 0;
 }
 
-int
-pmi_read_obj(const char *path, pmi_desc *d, pm_error *err)
+static int
+read_obj(const char *path, pmi_desc *d, pm_error *err, int geometry_only)
 {
 	objr R;
 	FILE *f;
@@ -218,6 +220,7 @@ pmi_read_obj(const char *path, pmi_desc *d, pm_error *err)
 	R.err = err;
 	R.cur = -1;
 	R.default_mat = -1;
+	R.geometry_only = geometry_only;
 	const char *sl = strrchr(path, '/');
 	if (sl)
 		snprintf(R.dir, sizeof R.dir, "%.*s/", (int)(sl - path), path);
@@ -285,6 +288,8 @@ pmi_read_obj(const char *path, pmi_desc *d, pm_error *err)
 				else
 					R.nface++;
 			}
+		} else if (R.geometry_only && (!strcmp(key, "usemtl") || !strcmp(key, "mtllib"))) {
+			;
 		} else if (!strcmp(key, "usemtl")) {
 			char name[64];
 			int i;
@@ -331,5 +336,48 @@ pmi_read_obj(const char *path, pmi_desc *d, pm_error *err)
 	free(R.vt);
 	free(R.fidx);
 	free(R.fstart);
+	return r;
+}
+
+int
+pmi_read_obj(const char *path, pmi_desc *d, pm_error *err)
+{
+	return read_obj(path, d, err, 0);
+}
+
+int
+pmi_read_obj_mesh(const char *path, pmi_shape *s, pm_error *err)
+{
+	pmi_desc tmp;
+	int r;
+
+	pmi_init(&tmp);
+	memset(s, 0, sizeof *s);
+	if ((r = read_obj(path, &tmp, err, 1)) == 0) {
+		size_t nv = 0, nf = 0, nc = 0;
+		for (size_t i = 0; i < tmp.nshapes; i++) {
+			nv += tmp.shapes[i].nv;
+			nf += tmp.shapes[i].nface;
+			nc += tmp.shapes[i].start[tmp.shapes[i].nface];
+		}
+		if (pmi_mesh_alloc(s, nv, nf, nc, 0)) {
+			pmi_shape_free(s);
+			r = pm_seterr(err, "out of memory");
+		} else {
+			size_t ov = 0, of = 0, oc = 0;
+			for (size_t i = 0; i < tmp.nshapes; i++) {
+				const pmi_shape *t = &tmp.shapes[i];
+				memcpy(s->v + 3 * ov, t->v, 3 * t->nv * sizeof *t->v);
+				for (size_t f = 0; f < t->nface; f++)
+					s->start[of + f + 1] = (uint32_t)(oc + t->start[f + 1]);
+				for (size_t c = 0; c < t->start[t->nface]; c++)
+					s->idx[oc + c] = (uint32_t)(ov + t->idx[c]);
+				ov += t->nv;
+				of += t->nface;
+				oc += t->start[t->nface];
+			}
+		}
+	}
+	pmi_free(&tmp);
 	return r;
 }

@@ -314,6 +314,18 @@ pfloat(plist *pl, const char *name, double def)
 	return p && p->nnum > 0 ? p->num[0] : def;
 }
 
+/* A bool written bare (true) or quoted ("true"). */
+static int
+pbool(plist *pl, const char *name, int def)
+{
+	param *p = pfind(pl, name);
+	if (!p)
+		return def;
+	if (p->nnum)
+		return p->num[0] != 0;
+	return p->nstr ? !strcmp(p->str[0], "true") : def;
+}
+
 static const char *
 pstring(plist *pl, const char *name, const char *def)
 {
@@ -403,8 +415,7 @@ roughness_alpha(parser *P, lexer *L, plist *pl, pmi_src at)
 {
 	double r = pfloat(pl, "roughness", 0);
 	double u = pfloat(pl, "uroughness", r), v = pfloat(pl, "vroughness", r);
-	param *rm = pfind(pl, "remaproughness");
-	int remap = rm && rm->nnum ? rm->num[0] != 0 : 1;
+	int remap = pbool(pl, "remaproughness", 1);
 
 	if (u != v)
 		pmi_note_add(P->d, at, "anisotropic roughness %g x %g taken as isotropic %g", u, v, sqrt(u * v));
@@ -1265,7 +1276,7 @@ directive(parser *P, lexer *L, token *t)
 	           !strcmp(d, "MakeNamedMaterial") || !strcmp(d, "LightSource") || !strcmp(d, "AreaLightSource") ||
 	           !strcmp(d, "Sampler") || !strcmp(d, "Integrator") || !strcmp(d, "PixelFilter") ||
 	           !strcmp(d, "Accelerator") || !strcmp(d, "ColorSpace") || !strcmp(d, "MakeNamedMedium") ||
-	           !strcmp(d, "Option") || !strcmp(d, "Attribute")) {
+	           !strcmp(d, "Attribute")) {
 		ARG_STR();
 		if (parse_params(P, L, &pl)) {
 			plist_free(&pl);
@@ -1311,8 +1322,7 @@ directive(parser *P, lexer *L, token *t)
 					r = -1;
 				P->gs.scale = pfloat(&pl, "scale", 1);
 				P->gs.power = pfloat(&pl, "power", -1);
-				param *ts = pfind(&pl, "twosided");
-				P->gs.twosided = ts && ts->nnum ? ts->num[0] != 0 : 0;
+				P->gs.twosided = pbool(&pl, "twosided", 0);
 				P->gs.area_src = at;
 				if (pfind(&pl, "filename"))
 					pmi_note_add(P->d, at, "AreaLightSource: image (filename) dropped, L used");
@@ -1326,6 +1336,29 @@ directive(parser *P, lexer *L, token *t)
 			pmi_note_add(P->d, at, "medium '%s': participating media dropped", a.s);
 		else if (!strcmp(d, "Attribute"))
 			pmi_note_add(P->d, at, "Attribute \"%s\": default parameters dropped", a.s);
+	} else if (!strcmp(d, "Option")) {
+		/* Option "type name" VALUE: renderer settings, none of them pm's. */
+		token t, *pk;
+		ARG_STR();
+		if (lex_peek(P, L, &pk))
+			return -1;
+		if (pk->kind == TK_LBRACK) {
+			lex_next(P, L, &t);
+			do {
+				if (lex_next(P, L, &t))
+					return -1;
+				if (t.kind == TK_EOF)
+					return pmi_err(P->d, at, P->err, "Option: missing ']'");
+				int k = t.kind;
+				tok_free(&t);
+				if (k == TK_RBRACK)
+					break;
+			} while (1);
+		} else if (pk->kind == TK_WORD || pk->kind == TK_STR) {
+			lex_next(P, L, &t);
+			tok_free(&t);
+		} else
+			return pmi_err(P->d, at, P->err, "Option: no value");
 	} else if (!strcmp(d, "NamedMaterial")) {
 		ARG_STR();
 		int i = find_named(P->mats, P->nmats, a.s);

@@ -98,7 +98,7 @@ static void
 mirror_point(const wctx *w, double p[3])
 {
 	if (w->mirror)
-		p[0] = -p[0];
+		p[0] = 0.0 - p[0];   /* +0, not -0, in the .pms */
 }
 
 /* ---- camera ---- */
@@ -507,7 +507,11 @@ write_shape(wctx *w, const pmi_shape *s, FILE *f, const pm_mat *pmm)
 			pmi_note_add(w->d, s->src, "sphere of radius 0: dropped");
 			return 0;
 		}
-		fprintf(f, "sphere %s %.9g %.9g %.9g %.9g subdiv 5\n", pmm->name, c[0], c[1], c[2], s->radius);
+		/* Emitters finer: their area (radiance x area is their power)
+		 * is 0.05 % short at subdiv 5, 0.2 % at pm's default 4. */
+		int emits = s->emit[0] > 0 || s->emit[1] > 0 || s->emit[2] > 0;
+		fprintf(f, "sphere %s %.9g %.9g %.9g %.9g subdiv %d\n", pmm->name, c[0], c[1], c[2], s->radius,
+		        emits ? 5 : 4);
 		return 1;
 	}
 	char *buf = NULL, name[512], path[4700];
