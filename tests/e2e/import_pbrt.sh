@@ -14,6 +14,7 @@ win() { "$stat" --window "$2" "$1" | sed -n 's/^mean: //p'; }
 # cam FLIP W H: camera at z = 5 looking at the origin, fov 40
 cam() {
 	echo "# written by import_pbrt.sh"
+	echo 'Option "bool disablepixeljitter" true'
 	[ "$1" = flip ] && echo 'Scale -1 1 1'
 	echo 'LookAt 0 0 5  0 0 0  0 1 0'
 	echo 'Camera "perspective" "float fov" [ 40 ]'
@@ -44,6 +45,16 @@ num_near "Scale -1 1 1 first: nothing on the left" "$(px flip.exr 15,16)" 0 0
 # The lamp's width in pixels from a row's mean: 1 unit = 8.79 px.
 num_near "plain: the lamp is 8.79 px wide (fov 40 vertical in 48x32)" \
 	"$(awk -v m="$(win plain.exr 0,16,48,17)" 'BEGIN { print m * 48 / 3 }')" 8.79 0.15
+
+# The lamp turned away from the camera: dark, unless "twosided" (written
+# quoted here, as pbrt also accepts).
+{ cam plain 48 32; echo "$lamp" | sed 's/^Shape/ReverseOrientation\nShape/'; } >back.pbrt
+{ cam plain 48 32; echo "$lamp" | sed 's/^Shape/ReverseOrientation\nShape/; s/"float scale" 2/"float scale" 2 "bool twosided" "true"/'; } >both.pbrt
+for s in back both; do
+	pm-import -q $s.pbrt -o $s/scene.pms && pm-render -q -e path -p 4 $s/scene.pms -o $s.exr
+done
+num_near "a one-sided lamp turned away (ReverseOrientation) is black" "$(px back.exr 15,16)" 0 1e-6
+num_near "the same lamp two-sided reads 3" "$(px both.exr 15,16)" 3 1e-4
 
 # Portrait 32 x 48: fov 40 is the horizontal angle, pm's vertical one is
 # 2 atan(tan 20 x 48/32) = 57.265; the horizontal scale is again 8.79 px/unit.
