@@ -14,7 +14,7 @@ win() { "$stat" --window "$2" "$1" | sed -n 's/^mean: //p'; }
 # cam FLIP W H: camera at z = 5 looking at the origin, fov 40
 cam() {
 	echo "# written by import_pbrt.sh"
-	echo 'Option "bool disablepixeljitter" true'
+	echo 'Option "disablepixeljitter" true'
 	[ "$1" = flip ] && echo 'Scale -1 1 1'
 	echo 'LookAt 0 0 5  0 0 0  0 1 0'
 	echo 'Camera "perspective" "float fov" [ 40 ]'
