@@ -934,15 +934,17 @@ shape_body(parser *P, lexer *L, const char *type, plist *pl, pmi_src at)
 	return r;
 }
 
-/* pbrt-v4 ignores area lights on the shapes of an object definition (its
- * instances do not emit), so pm-import does too. */
+/* pbrt-v4 does not support area lights in object instances: it warns, and
+ * the shape stays in the object without emitting (measured with pbrt-v4;
+ * an object made only of such shapes it leaves empty, which pm-import does
+ * not imitate). */
 static int
 do_shape(parser *P, lexer *L, const char *type, plist *pl, pmi_src at)
 {
 	int area = P->gs.area, r;
 
 	if (P->cur_obj >= 0 && area) {
-		pmi_note_add(P->d, at, "area light on a shape of an object instance: it does not emit (as in pbrt)");
+		pmi_note_add(P->d, at, "area light on a shape inside ObjectBegin: it does not emit (as in pbrt)");
 		P->gs.area = 0;
 	}
 	r = shape_body(P, L, type, pl, at);
