@@ -67,6 +67,21 @@ num_near "fov_axis y: the lamp is 8.79 px wide" \
 num_near "fov_axis smaller, portrait: vertical 2 atan(tan 20 x 48/32) = 57.265" "$(fov_of s/scene.pms)" 57.2651 0.001
 num_near "fov_axis smaller, portrait: lamp on the right, reads 3" "$(px s.exr 24,24)" 3 1e-4
 
+# A sensor whose to_world mirrors x after the lookat shows the mirror
+# image: the lamp on the left (pm mirrors the world to show it).
+scene x 48 32 | sed 's|<lookat origin="0, 0, 5" target="0, 0, 0" up="0, 1, 0"/>|&<scale x="-1"/>|' >m.xml
+pm-import -q m.xml -o m/scene.pms && pm-render -q -e path -p 4 m/scene.pms -o m.exr
+num_near "a mirroring sensor transform: the lamp on the left, reads 3" "$(px m.exr 10,16)" 3 1e-4
+num_near "... nothing on the right" "$(px m.exr 37,16)" 0 0
+# fov_axis larger on the portrait: 40 is the vertical angle; diagonal on the
+# landscape: tan(fov_y/2) = tan 20 x 32 / sqrt(48^2 + 32^2): fov_y 22.97.
+scene larger 32 48 >l.xml
+scene diagonal 48 32 >d.xml
+pm-import -q l.xml -o l/scene.pms && pm-import -q d.xml -o d/scene.pms
+num_near "fov_axis larger, portrait: vertical 40" "$(fov_of l/scene.pms)" 40 1e-6
+num_near "fov_axis diagonal, landscape: vertical 22.97" "$(fov_of d/scene.pms)" \
+	"$(awk 'BEGIN { t = sin(20 * 3.14159265358979 / 180) / cos(20 * 3.14159265358979 / 180) * 32 / sqrt(48 * 48 + 32 * 32); print 2 * atan2(t, 1) * 180 / 3.14159265358979 }')" 1e-4
+
 # A one-sided lamp (2 x 2, L 1) at height 1 facing down over a grey floor
 # (rho 0.5), the camera between them: the floor reads rho E / pi =
 # 0.27706 (as import_pbrt.sh derives); flip_normals turns it up.
