@@ -74,3 +74,36 @@ expect_fail "output not .pms" 2 "the output is a scene: name it NAME.pms" pm-imp
 expect_fail "unknown extension" 2 "unknown format" pm-import good.txt -o out/scene.pms
 expect_fail "--size wants two numbers" 2 "^pm-import: --size" pm-import good.pbrt -o out/scene.pms --size 8
 expect_fail "bad --camera" 2 "^pm-import: --camera: want" pm-import good.pbrt -o out/scene.pms --camera 'eye 0 0 5'
+
+# Cut short anywhere: every prefix at 16 points of a pbrt file with an
+# instanced PLY mesh, a Mitsuba file and an OBJ+MTL is either read (exit
+# 0) or refused with one line (exit 1); never a crash (the ASan tree
+# checks memory too), never output left behind by a refusal.
+printf 'ply\nformat binary_little_endian 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n' >tri.ply
+printf '\000\000\000\000\000\000\000\000\000\000\000\000\000\000\200\077\000\000\000\000\000\000\000\000\000\000\200\077\000\000\200\077\000\000\000\000\003\000\000\000\000\001\000\000\000\002\000\000\000' >>tri.ply
+{ printf '%s\n%s\n' "$cam" "$lamp"
+  echo 'ObjectBegin "o" Shape "plymesh" "string filename" "tri.ply" ObjectEnd'
+  echo 'AttributeBegin Translate 1 0 0 ObjectInstance "o" AttributeEnd'
+  echo 'Material "coateddiffuse" "rgb reflectance" [ 0.5 0.5 0.5 ] "float roughness" 0.1'
+  echo 'Shape "sphere" "float radius" 0.5'; } >whole.pbrt
+printf '<scene version="3.0.0">\n<default name="f" value="40"/>\n<sensor type="perspective"><float name="fov" value="$f"/><transform name="to_world"><lookat origin="0, 0, 5" target="0, 0, 0" up="0, 1, 0"/></transform><film type="hdrfilm"><integer name="width" value="8"/><integer name="height" value="8"/></film></sensor>\n<bsdf type="roughplastic" id="p"><rgb name="diffuse_reflectance" value="0.5"/></bsdf>\n<shape type="ply"><string name="filename" value="tri.ply"/><ref id="p"/><emitter type="area"><rgb name="radiance" value="1"/></emitter></shape>\n</scene>\n' >whole.xml
+printf 'newmtl l\nKe 1 1 1\nKd 0.5 0.5 0.5\n' >whole.mtl
+printf 'mtllib whole.mtl\no a\nv 0 0 0\nv 1 0 0\nv 1 1 0\nvt 0 0\nusemtl l\nf 1/1 2/1 3/1\nf -3 -2 -1\n' >whole.obj
+for f in whole.pbrt whole.xml whole.obj; do
+	pm-import -q $f -o full/scene.pms 2>err.txt
+	check "$f whole: imports ($(head -c 200 err.txt))" test -s full/scene.pms
+done
+for f in whole.pbrt whole.xml whole.obj tri.ply; do
+	n=$(wc -c <$f) bad=
+	cp $f keep.$f
+	for k in 1 2 3 4 5 6 7 8 9 10 11 12 13 14 15 16; do
+		head -c $((n * k / 17)) keep.$f >$f
+		case $f in tri.ply) in=whole.pbrt ;; *) in=$f ;; esac
+		rm -rf cut
+		pm-import -q $in -o cut/scene.pms >/dev/null 2>err.txt
+		rc=$?
+		if [ $rc -ne 0 ] && { [ $rc -ne 1 ] || [ "$(wc -l <err.txt)" -ne 1 ] || [ -e cut ]; }; then bad="$bad $k/17:rc=$rc"; fi
+	done
+	cp keep.$f $f
+	check "$f cut short at 16 points: exit 0, or 1 with one line and nothing written:${bad:- yes}" test -z "$bad"
+done
