@@ -197,3 +197,21 @@ done
 { cam plain 48 32; echo "$lamp" | sed 's/1.5 -0.5 0  1.5 0.5/1.4 -0.5 0  1.4 0.5/'; } >plain.pbrt
 pm-import -q plain.pbrt -o plain/scene.pms
 check "re-import: the old mesh removed, the new one in place" test "$(ls plain | grep -c '\.ply$')" -eq 1
+
+# loopsubdiv: a regular tetrahedron (corners (1,1,1), (1,-1,-1), (-1,1,-1),
+# (-1,-1,1)) subdivided once has 4 + 6 vertices and 16 faces; Loop's rules
+# put every old corner at 7/16 v + 3/16 (sum of the other three) = v / 4
+# and every edge's new vertex at 3/8 (a + b) + 1/8 (c + d) = (a + b) / 4, so
+# no coordinate exceeds 0.5 (the edge vertices', e.g. (0.5, 0, 0)).
+{ cam plain 8 8
+  echo 'AreaLightSource "diffuse" "rgb L" [ 1 1 1 ]'
+  echo 'Shape "loopsubdiv" "integer levels" 1 "point3 P" [ 1 1 1  1 -1 -1  -1 1 -1  -1 -1 1 ]'
+  echo '  "integer indices" [ 0 1 2  0 3 1  0 2 3  1 3 2 ]'; } >loop.pbrt
+pm-import -q loop.pbrt -o loop/scene.pms
+ply=loop/$(sed -n 's/^mesh \([^ ]*\) .*/\1/p' loop/scene.pms)
+check "loopsubdiv, 1 level: 10 vertices, 16 faces" \
+	test "$(sed -n 's/^element vertex //p' $ply) $(sed -n 's/^element face //p' $ply)" = "10 16"
+off=$(($(sed -n '1,/^end_header/p' $ply | wc -c)))
+max=$(od -A n -t f4 -j $off -N 120 $ply | tr -s ' ' '\n' | grep . |
+	awk '{ v = $1 < 0 ? -$1 : $1; if (v > m) m = v } END { print m }')
+num_near "loopsubdiv: the largest coordinate is 0.5 (corners moved to v/4)" "$max" 0.5 1e-6
