@@ -313,10 +313,11 @@ def fam_thin(s):
     s.mat("paint", "diffuse albedo 0.7 0.7 0.68")
     s.mat("rug", "diffuse albedo 0.6 0.2 0.2")
     s.room(True)
-    # a staircase of eight step blocks against the left wall: each block
-    # from the floor to its tread, sharing its faces with the next
+    # a staircase of eight step blocks against the left wall, rising toward
+    # the back: each block from the floor to its tread, sharing its faces
+    # with the next
     for i in range(8):
-        s.box("paint", (0.0, 0.0, 2.0 + 0.28 * i), (0.9, 0.18 * (i + 1), 2.0 + 0.28 * (i + 1)))
+        s.box("paint", (0.0, 0.0, 2.9 - 0.28 * (i + 1)), (0.9, 0.18 * (i + 1), 2.9 - 0.28 * i))
     # a bookshelf of 2 cm panels against the back wall
     x0, x1, y1, dz = 1.6, 2.8, 2.0, 0.3
     s.box("wood", (x0, 0, 0.0), (x0 + 0.02, y1, dz))
@@ -344,7 +345,7 @@ def fam_thin(s):
         s.box("wood", (cx - 0.2, y, cz + 0.17), (cx + 0.2, y + 0.06, cz + 0.19))
     s.box("wood", (cx - 0.2, y0 + 0.47, cz + 0.17), (cx - 0.17, y0 + 0.95, cz + 0.2))
     s.box("wood", (cx + 0.17, y0 + 0.47, cz + 0.17), (cx + 0.2, y0 + 0.95, cz + 0.2))
-    return s.write((3.6, 1.7, 4.6), (1.6, 0.9, 1.2), 65)
+    return s.write((3.75, 1.9, 4.9), (1.0, 0.9, 1.6), 72)
 
 
 FAMILIES = {"prims": fam_prims, "dense": fam_dense, "scanned": fam_scanned, "soup": fam_soup, "thin": fam_thin}
