@@ -19,6 +19,12 @@
 #   REF_PASSES x REF_SPP  the reference: 8 x 256 | 32 x 1024 (cached in
 #            BENCH_CACHE, default BUILD_DIR/bench-cache)
 #   J        threads per program: 2
+#   BUDGET   seconds a scene's compensated series may take: 120 | 1200;
+#            past it (and after 2 pass pairs) the series stops, and a view
+#            pass that takes more than BUDGET / 4 is timed once, not RUNS
+#            times, and one over BUDGET / 2 gets no efficiency series (a
+#            dense mesh can cost minutes per pass: that is the price being
+#            measured, not a reason to wait an hour)
 # Times are wall seconds with J threads (pm-render's defaults otherwise:
 # -k 50 -p 16 -l 4; the path tracer -p 64 -l 1, its best per bench/run.sh).
 # The path tracer runs passes until it has used the compensated run's time.
@@ -30,13 +36,13 @@ top=$(cd "$(dirname "$0")/.." && pwd)
 B=${2:-build}
 case $B in /*) ;; *) B=$top/$B ;; esac
 case $mode in
-quick) d_size=96 d_runs=3 d_n=8 d_rp=8 d_rs=256 ;;
-full) d_size=256 d_runs=5 d_n=32 d_rp=32 d_rs=1024 ;;
+quick) d_size=96 d_runs=3 d_n=8 d_rp=8 d_rs=256 d_budget=120 ;;
+full) d_size=256 d_runs=5 d_n=32 d_rp=32 d_rs=1024 d_budget=1200 ;;
 *) echo "usage: bench/families.sh [quick|full] [BUILD_DIR]" >&2; exit 2 ;;
 esac
 SCENES=${SCENES:-cornell room caustic prims dense scanned soup thin}
 SIZE=${SIZE:-$d_size} PHOTONS=${PHOTONS:-200000} RUNS=${RUNS:-$d_runs} N=${N:-$d_n} J=${J:-2}
-REF_PASSES=${REF_PASSES:-$d_rp} REF_SPP=${REF_SPP:-$d_rs}
+REF_PASSES=${REF_PASSES:-$d_rp} REF_SPP=${REF_SPP:-$d_rs} BUDGET=${BUDGET:-$d_budget}
 . "$top/bench/passes.sh"
 command -v python3 >/dev/null || { echo "$0: python3 missing (bench/families.py writes the scenes)" >&2; exit 1; }
 cost=$res/families-cost.tsv eff=$res/families-efficiency.tsv
@@ -67,14 +73,24 @@ for name in $SCENES; do
 	log "$name ($size): view pass, compensated and classical, $PHOTONS photons, $RUNS runs each"
 	"$bin/pm-shoot" -q -j "$J" -n "$PHOTONS" -s 1 "$sc" | "$bin/pm-build" -q -j "$J" -o "$tmp/map.pm"
 	for est in compensated classical; do
+		: >"$tmp/runs"
 		for r in $(seq 1 "$RUNS"); do
-			timed "$bin/pm-render" -q -j "$J" -e $est -s 1 "$sc" "$tmp/map.pm" -o "$tmp/v.exr"
-		done | median >"$tmp/t-$est"
+			timed "$bin/pm-render" -q -j "$J" -e $est -s 1 "$sc" "$tmp/map.pm" -o "$tmp/v.exr" >>"$tmp/runs"
+			awk -v t="$(tail -n 1 "$tmp/runs")" -v b="$BUDGET" 'BEGIN { exit !(t > b / 4) }' && break
+		done
+		median <"$tmp/runs" >"$tmp/t-$est"
 	done
 	awk -v OFS='\t' -v n="$name" -v p="$npoly" -v s="$size" -v c="$(cat "$tmp/t-compensated")" \
 		-v k="$(cat "$tmp/t-classical")" 'BEGIN { print n, p, s, c, k, sprintf("%.2f", c / k) }' >>"$cost"
 
-	# The efficiency at equal time, against a converged reference.
+	# The efficiency at equal time, against a converged reference; not
+	# where one compensated view pass alone takes half the budget.
+	if awk -v t="$(cat "$tmp/t-compensated")" -v b="$BUDGET" 'BEGIN { exit !(t > b / 2) }'; then
+		log "$name: a compensated view pass takes over BUDGET / 2 = $BUDGET / 2 s: no efficiency series"
+		printf '%s	%s	-	-	-	-	-
+' "$name" compensated "$name" classical "$name" path >>"$eff"
+		continue
+	fi
 	rk=$cache/fam-ref-$name-$(cat "$sc" "$(dirname "$sc")"/*.obj 2>/dev/null | cksum | cut -d' ' -f1)-$REF_PASSES-$REF_SPP.exr
 	if [ ! -s "$rk" ]; then
 		log "$name: reference, $REF_PASSES x $REF_SPP spp path-traced"
@@ -102,6 +118,7 @@ for name in $SCENES; do
 				awk -v t="$t" -v c="$tcomp" 'BEGIN { exit !(t < c) }' || break
 			else
 				[ "$i" -lt "$N" ] || break
+				[ "$i" -lt 2 ] || awk -v t="$t" -v b="$BUDGET" 'BEGIN { exit !(t > b) }' || break
 			fi
 		done
 		[ $est = compensated ] && tcomp=$t
