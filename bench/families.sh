@@ -118,7 +118,9 @@ for name in $SCENES; do
 				awk -v t="$t" -v c="$tcomp" 'BEGIN { exit !(t < c) }' || break
 			else
 				[ "$i" -lt "$N" ] || break
-				[ "$i" -lt 2 ] || awk -v t="$t" -v b="$BUDGET" 'BEGIN { exit !(t > b) }' || break
+				if [ "$i" -ge 2 ] && awk -v t="$t" -v b="$BUDGET" 'BEGIN { exit !(t > b) }'; then
+					break
+				fi
 			fi
 		done
 		[ $est = compensated ] && tcomp=$t
