@@ -359,6 +359,10 @@ lever room "path tracer" 0 "-p 64 -l 1"
 lever room "the default (-p 16 -l 4)" 100000 "-p 16 -l 4"
 lever room "-p 4 -l 4" 100000 "-p 4 -l 4"
 lever room "-p 64 -l 4" 100000 "-p 64 -l 4"
+# ---- the compensated estimate's price and efficiency on mesh families --
+# (issue 21; bench/families.sh, its prose in bench/sections/families.md)
+log "bench/families.sh $mode"
+BENCH_CACHE=$cache sh "$top/bench/families.sh" "$mode" "$B" >&2 || log "bench/families.sh failed"
 # ---- the optional modes' own benchmarks (full mode only: tens of minutes) --
 # Each writes its TSVs and plots to bench/results; their prose lives in
 # bench/sections/ (appended to BENCHMARKS.md by report.sh).

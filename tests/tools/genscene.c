@@ -10,6 +10,12 @@
  * on them), low overhanging slabs, pictures a hair in front of a wall,
  * spheres resting on surfaces; diffuse or soft-glossy floors, sometimes a
  * separate floor quad laid over the room's floor; point or area lights.
+ * Later families, drawn from a stream of their own (fam_state) so that a
+ * scene none of them touches is byte for byte what it was: rooms of six
+ * separate quads (a polygon soup, not one closed box), tables and boxes
+ * written as polygon-soup OBJs (every face its own vertices), and curved
+ * meshes as Blender's primitives export them (UV spheres 48 x 24, tori
+ * 48 x 16, open 48-sided tubes, blobby heads), some as soups.
  *
  * Usage: genscene SEED OUTDIR [--furnace] [--size W H]
  *   Writes OUTDIR/scene.pms (and OUTDIR/meshN.obj for the OBJ blocks,
@@ -59,6 +65,21 @@ form_chance(double p)
 	form_state = rng_state;
 	rng_state = keep;
 	return (double)(u >> 11) * 0x1.0p-53 < p;
+}
+/* The families added later (rooms of six quads, polygon-soup furniture,
+ * curved meshes) draw from a third stream, fam_state: a scene none of them
+ * touches stays byte for byte what it was. fam_begin/fam_end run the
+ * ordinary helpers (rnd, chance, ...) on that stream. */
+static uint64_t fam_state, fam_keep;
+static void fam_begin(void) { fam_keep = rng_state; rng_state = fam_state; }
+static void fam_end(void) { fam_state = rng_state; rng_state = fam_keep; }
+static int
+fam_chance(double p)
+{
+	fam_begin();
+	int r = (double)(next64() >> 11) * 0x1.0p-53 < p;
+	fam_end();
+	return r;
 }
 static double rnd(double a, double b) { return a + (b - a) * unif(); }
 static int irnd(int n) { return (int)(unif() * n); }
@@ -259,6 +280,94 @@ emit_quad4(const char *m, const double p[4][3])
  * (counter-clockwise seen from above). */
 typedef struct { int n; double px[8], pz[8], y0, y1; } prism;
 
+/* One face of an OBJ: corners idx[0..n-1] (1-based, into the shared
+ * vertices); in a polygon soup each face gets its own copies of its
+ * corners, as flat-shaded exports write them (no edge is shared, so the
+ * mesh is an open sheet of loose faces). */
+static void
+obj_face(FILE *f, int soup, const double (*vt)[3], const int *idx, int n, int *nsoup)
+{
+	if (soup) {
+		for (int i = 0; i < n; i++)
+			fprintf(f, "v %.5f %.5f %.5f\n", q(vt[idx[i] - 1][0]), q(vt[idx[i] - 1][1]), q(vt[idx[i] - 1][2]));
+		fprintf(f, "f");
+		for (int i = 0; i < n; i++)
+			fprintf(f, " %d", *nsoup + 1 + i);
+		fprintf(f, "\n");
+		*nsoup += n;
+		return;
+	}
+	fprintf(f, "f");
+	for (int i = 0; i < n; i++)
+		fprintf(f, " %d", idx[i]);
+	fprintf(f, "\n");
+}
+
+/* A mesh file of nv vertices and faces (face k: fv[fs[k] .. fs[k+1]-1],
+ * 1-based), shared or as a polygon soup, added to the scene. */
+static void
+emit_obj(const char *m, const double (*vt)[3], int nv, const int *fv, const int *fs, int nf, int soup, const char *what)
+{
+	char name[64], path[4096];
+	FILE *f;
+	int nsoup = 0;
+	snprintf(name, sizeof name, "mesh%d.obj", ++nmesh);
+	snprintf(path, sizeof path, "%s/%s", outdir, name);
+	if (!(f = fopen(path, "w"))) { fprintf(stderr, "genscene: cannot write '%s': %s\n", path, strerror(errno)); exit(1); }
+	fprintf(f, "# %s: %s (genscene)\n", name, what);
+	for (int i = 0; i < nv && !soup; i++)
+		fprintf(f, "v %.5f %.5f %.5f\n", q(vt[i][0]), q(vt[i][1]), q(vt[i][2]));
+	for (int k = 0; k < nf; k++)
+		obj_face(f, soup, vt, fv + fs[k], fs[k + 1] - fs[k], &nsoup);
+	if (fclose(f)) { fprintf(stderr, "genscene: cannot write '%s': %s\n", path, strerror(errno)); exit(1); }
+	sb_printf(&geo, "mesh %s %s\n", name, m);
+}
+
+/* emit_prisms_obj's prisms as a polygon soup: every face its own
+ * vertices, as flat-shaded exports write them (an open sheet of loose
+ * faces, one object). */
+static void
+emit_prisms_soup(const char *m, const prism *pr, int np, int bottom, const char *what)
+{
+	static double vt[5 * 16][3];
+	static int fv[5 * 64], fs[5 * 12];
+	int nv = 0, nfv = 0, nf = 0;
+	char w[160];
+	for (int k = 0; k < np; k++) {
+		const prism *P = &pr[k];
+		int n = P->n, base = nv + 1;
+		for (int i = 0; i < n; i++, nv++)
+			vt[nv][0] = P->px[i], vt[nv][1] = P->y0, vt[nv][2] = P->pz[i];
+		for (int i = 0; i < n; i++, nv++)
+			vt[nv][0] = P->px[i], vt[nv][1] = P->y1, vt[nv][2] = P->pz[i];
+		/* The top face must be counter-clockwise seen from +y: by
+		 * Newell's normal, n_y = sum (z_i - z_j)(x_i + x_j) > 0 when
+		 * the angle atan2(z, x) decreases along the corners; the caller
+		 * gives that order. */
+		fs[nf++] = nfv;
+		for (int i = 0; i < n; i++)
+			fv[nfv++] = base + n + i;
+		for (int i = 0; i < n; i++) {
+			int j = (i + 1) % n;
+			/* side face: bottom i, bottom j, top j, top i is
+			 * counter-clockwise seen from outside (normal outward) */
+			fs[nf++] = nfv;
+			fv[nfv++] = base + i;
+			fv[nfv++] = base + j;
+			fv[nfv++] = base + n + j;
+			fv[nfv++] = base + n + i;
+		}
+		if (bottom) {
+			fs[nf++] = nfv;
+			for (int i = n - 1; i >= 0; i--)
+				fv[nfv++] = base + i;
+		}
+	}
+	fs[nf] = nfv;
+	snprintf(w, sizeof w, "%s, %s, polygon soup", what, bottom ? "closed" : "open bottom");
+	emit_obj(m, (const double (*)[3])vt, nv, fv, fs, nf, 1, w);
+}
+
 /* np prisms written as one OBJ file (one object: a solid of several parts
  * when they are closed and touch, as a chair or table mesh is), with or
  * without their bottom faces; what says what it is. */
@@ -374,11 +483,16 @@ item_boxes(void)
 		return 0;
 	const char *m = diffuse_mat("m");
 	double y1 = q(s->y + h);
-	emit_box(m, cx, cz, hx, hz, ang, s->y, y1);
+	int soup = fam_chance(0.15);
+	if (soup) {
+		prism P = box_prism(cx, cz, hx, hz, ang, s->y, y1);
+		emit_prisms_soup(m, &P, 1, 1, "a box");
+	} else
+		emit_box(m, cx, cz, hx, hz, ang, s->y, y1);
 	add_aabb(&a);
 	int nstack = irnd(3);
 	int atwall = fabs(a.lo[0]) < 1e-4 || fabs(a.hi[0] - W) < 1e-4 || fabs(a.lo[2]) < 1e-4 || fabs(a.hi[2] - D) < 1e-4;
-	sb_printf(&desc, "; box%s%s on %s", atwall ? " against a wall" : flush ? " at an edge" : "", rel != 0 && rel != PI / 2 ? " rotated" : "", sup_name(s));
+	sb_printf(&desc, "; box%s%s%s on %s", soup ? " (OBJ soup)" : "", atwall ? " against a wall" : flush ? " at an edge" : "", rel != 0 && rel != PI / 2 ? " rotated" : "", sup_name(s));
 	support top = { cx, cz, hx, hz, ang, y1, "box" };
 	int placed = 0;
 	for (int k = 0; k < nstack; k++) {
@@ -464,9 +578,10 @@ item_table(void)
 	const char *m = diffuse_mat("m");
 	/* Half the tables are one closed mesh of five boxes, as a modelled
 	 * table is: a solid of several parts, not five solids. */
-	int onemesh = form_chance(0.5);
+	int onemesh = form_chance(0.5), soup = fam_chance(0.25);
 	prism part[5];
 	part[0] = box_prism(cx, cz, hx, hz, ang, y0, y1);
+	onemesh |= soup;
 	if (!onemesh)
 		emit_box(m, cx, cz, hx, hz, ang, y0, y1);
 	double ca = cos(ang), sa = sin(ang);
@@ -477,11 +592,13 @@ item_table(void)
 		if (!onemesh)
 			emit_box(m, lx, lz, leg, leg, ang, s->y, y0);
 	}
-	if (onemesh)
+	if (soup)
+		emit_prisms_soup(m, part, 5, 1, "a table of five boxes");
+	else if (onemesh)
 		emit_prisms_obj(m, part, 5, 1, "a table of five boxes");
 	add_aabb(&a);
 	add_support(cx, cz, hx, hz, ang, y1, "table");
-	sb_printf(&desc, "; table%s (top %.0f mm, %.0f cm high%s) on %s", onemesh ? " (one OBJ)" : "",
+	sb_printf(&desc, "; table%s (top %.0f mm, %.0f cm high%s) on %s", soup ? " (OBJ soup)" : onemesh ? " (one OBJ)" : "",
 	          t * 1000, ht * 100, inset == 0 ? ", flush legs" : "", sup_name(s));
 	return 1;
 }
@@ -690,6 +807,189 @@ item_sphere(void)
 	return 1;
 }
 
+/* ---- curved meshes, as Blender's primitives are exported ---- */
+typedef struct { double (*v)[3]; int nv, vcap; int *fv, nfv, fvcap; int *fs, nf, fcap; } meshbuf;
+static int
+mb_vert(meshbuf *M, double x, double y, double z)
+{
+	if (M->nv == M->vcap && !(M->v = realloc(M->v, (size_t)(M->vcap = 2 * M->vcap + 256) * sizeof *M->v))) { perror("genscene"); exit(1); }
+	M->v[M->nv][0] = x, M->v[M->nv][1] = y, M->v[M->nv][2] = z;
+	return ++M->nv;  /* 1-based, as OBJ */
+}
+static void
+mb_face(meshbuf *M, int n, int a, int b, int c, int d)
+{
+	int idx[4] = { a, b, c, d };
+	if (M->nf + 2 > M->fcap && !(M->fs = realloc(M->fs, (size_t)(M->fcap = 2 * M->fcap + 256) * sizeof *M->fs))) { perror("genscene"); exit(1); }
+	if (M->nfv + 4 > M->fvcap && !(M->fv = realloc(M->fv, (size_t)(M->fvcap = 2 * M->fvcap + 1024) * sizeof *M->fv))) { perror("genscene"); exit(1); }
+	M->fs[M->nf++] = M->nfv;
+	for (int i = 0; i < n; i++)
+		M->fv[M->nfv++] = idx[i];
+	M->fs[M->nf] = M->nfv;
+}
+/* A UV sphere of nu segments and nv rings (quads, triangles at the poles). */
+static void
+mb_uvsphere(meshbuf *M, int nu, int nv, double r)
+{
+	int top = mb_vert(M, 0, r, 0), b0 = M->nv + 1, bot;
+	for (int j = 1; j < nv; j++)
+		for (int i = 0; i < nu; i++) {
+			double th = PI * j / nv, ph = 2 * PI * i / nu;
+			mb_vert(M, r * sin(th) * cos(ph), r * cos(th), -r * sin(th) * sin(ph));
+		}
+	bot = mb_vert(M, 0, -r, 0);
+#define AT(j, i) (b0 + ((j) - 1) * nu + (i) % nu)
+	for (int i = 0; i < nu; i++)
+		mb_face(M, 3, top, AT(1, i), AT(1, i + 1), 0);
+	for (int j = 1; j < nv - 1; j++)
+		for (int i = 0; i < nu; i++)
+			mb_face(M, 4, AT(j, i), AT(j + 1, i), AT(j + 1, i + 1), AT(j, i + 1));
+	for (int i = 0; i < nu; i++)
+		mb_face(M, 3, AT(nv - 1, i + 1), AT(nv - 1, i), bot, 0);
+#undef AT
+}
+/* A torus about y: nu segments round the ring, nv round the tube. */
+static void
+mb_torus(meshbuf *M, int nu, int nv, double R, double r)
+{
+	int b0 = M->nv + 1;
+	for (int i = 0; i < nu; i++)
+		for (int j = 0; j < nv; j++) {
+			double ph = 2 * PI * i / nu, th = 2 * PI * j / nv, d = R + r * cos(th);
+			mb_vert(M, d * cos(ph), r * sin(th), -d * sin(ph));
+		}
+#define AT(i, j) (b0 + ((i) % nu) * nv + (j) % nv)
+	for (int i = 0; i < nu; i++)
+		for (int j = 0; j < nv; j++)
+			mb_face(M, 4, AT(i, j), AT(i + 1, j), AT(i + 1, j + 1), AT(i, j + 1));
+#undef AT
+}
+/* An open tube of n sides from y = 0 to h, no caps. */
+static void
+mb_tube(meshbuf *M, int n, double r, double h)
+{
+	int b0 = M->nv + 1;
+	for (int k = 0; k < 2; k++)
+		for (int i = 0; i < n; i++)
+			mb_vert(M, r * cos(2 * PI * i / n), k * h, -r * sin(2 * PI * i / n));
+	for (int i = 0; i < n; i++)
+		mb_face(M, 4, b0 + i, b0 + (i + 1) % n, b0 + n + (i + 1) % n, b0 + n + i);
+}
+/* A blobby head: an octahedron subdivided level times onto the unit
+ * sphere (8 * 4^level triangles), displaced by a few smooth random waves. */
+static void
+mb_blob(meshbuf *M, int level, double r)
+{
+	static const double o[6][3] = { { 1, 0, 0 }, { -1, 0, 0 }, { 0, 1, 0 }, { 0, -1, 0 }, { 0, 0, 1 }, { 0, 0, -1 } };
+	static const int f8[8][3] = { { 0, 2, 4 }, { 4, 2, 1 }, { 1, 2, 5 }, { 5, 2, 0 }, { 4, 3, 0 }, { 1, 3, 4 }, { 5, 3, 1 }, { 0, 3, 5 } };
+	double wv[5][4];
+	int n = 1 << level;
+	for (int w = 0; w < 5; w++)
+		for (int k = 0; k < 4; k++)
+			wv[w][k] = k < 3 ? rnd(-3, 3) : rnd(0, 2 * PI);
+	/* each face of the octahedron as a triangular grid of n steps; edge
+	 * vertices are repeated per face and merged by position below. */
+	for (int t = 0; t < 8; t++) {
+		const double *A = o[f8[t][0]], *B = o[f8[t][1]], *C = o[f8[t][2]];
+		int row0 = M->nv + 1;
+		for (int i = 0; i <= n; i++)
+			for (int j = 0; j <= n - i; j++) {
+				double p[3], l = 0, s = 0;
+				for (int k = 0; k < 3; k++) {
+					p[k] = (A[k] * (n - i - j) + B[k] * i + C[k] * j) / n;
+					l += p[k] * p[k];
+				}
+				l = sqrt(l);
+				for (int k = 0; k < 3; k++)
+					p[k] /= l;
+				for (int w = 0; w < 5; w++)
+					s += sin(wv[w][0] * p[0] + wv[w][1] * p[1] + wv[w][2] * p[2] + wv[w][3]);
+				s = r * (1 + 0.06 * s);
+				mb_vert(M, p[0] * s, p[1] * s, p[2] * s);
+			}
+#define AT(i, j) (row0 + (i) * (n + 1) - (i) * ((i) - 1) / 2 + (j))
+		for (int i = 0; i < n; i++)
+			for (int j = 0; j < n - i; j++) {
+				mb_face(M, 3, AT(i, j), AT(i + 1, j), AT(i, j + 1), 0);
+				if (j < n - i - 1)
+					mb_face(M, 3, AT(i + 1, j), AT(i + 1, j + 1), AT(i, j + 1), 0);
+			}
+#undef AT
+	}
+	/* merge repeated edge vertices (equal after rounding to the 1e-5 grid) */
+	int *map = malloc((size_t)M->nv * sizeof *map);
+	if (!map) { perror("genscene"); exit(1); }
+	for (int i = 0; i < M->nv; i++) {
+		map[i] = i;
+		for (int k = 0; k < i && map[i] == i; k++)
+			if (map[k] == k && q(M->v[k][0]) == q(M->v[i][0]) && q(M->v[k][1]) == q(M->v[i][1]) && q(M->v[k][2]) == q(M->v[i][2]))
+				map[i] = k;
+	}
+	/* ... and the kept ones renumbered, so no vertex is left unused */
+	int nk = 0;
+	for (int i = 0; i < M->nv; i++)
+		if (map[i] == i) {
+			memcpy(M->v[nk], M->v[i], sizeof M->v[i]);
+			map[i] = nk++;
+		} else
+			map[i] = map[map[i]];
+	M->nv = nk;
+	for (int i = 0; i < M->nfv; i++)
+		M->fv[i] = map[M->fv[i] - 1] + 1;
+	free(map);
+}
+
+/* A curved mesh (a UV sphere 48 x 24, a torus 48 x 16 lying flat, an open
+ * 48-sided tube standing up, a blobby head of 2048 triangles) resting on
+ * a support at its lowest vertices; a third of them written as polygon
+ * soups. Drawn from the families' stream (fam_begin). */
+static int
+item_curved(void)
+{
+	static const char *kinds[] = { "UV sphere 48x24", "torus 48x16", "open tube (48 sides)", "blobby head (2048 triangles)" };
+	const support *s = pick_support(0.4);
+	int kind = irnd(4), soup = chance(0.3);
+	double r = rnd(0.08, 0.3), cx, cz, ang;
+	meshbuf M = { 0 };
+	if (s != &sup[0] && r > fmin(s->hx, s->hz))
+		r = fmin(s->hx, s->hz);
+	if (!spot(s, r, r, 0, 0, &cx, &cz, &ang))
+		return 0;
+	if (kind == 0)
+		mb_uvsphere(&M, 48, 24, r);
+	else if (kind == 1)
+		mb_torus(&M, 48, 16, r * 0.7, r * rnd(0.12, 0.3));
+	else if (kind == 2)
+		mb_tube(&M, 48, r, rnd(0.1, 0.5));
+	else
+		mb_blob(&M, 4, r * 0.9);
+	double lo[3] = { INFINITY, INFINITY, INFINITY }, hi[3] = { -INFINITY, -INFINITY, -INFINITY };
+	for (int i = 0; i < M.nv; i++)
+		for (int k = 0; k < 3; k++) {
+			lo[k] = fmin(lo[k], M.v[i][k]);
+			hi[k] = fmax(hi[k], M.v[i][k]);
+		}
+	/* the lowest vertices exactly on the support */
+	for (int i = 0; i < M.nv; i++) {
+		M.v[i][0] += cx;
+		M.v[i][1] = q(s->y + q(M.v[i][1] - lo[1]));
+		M.v[i][2] += cz;
+	}
+	aabb a = { { cx + lo[0], s->y, cz + lo[2] }, { cx + hi[0], s->y + hi[1] - lo[1], cz + hi[2] } };
+	int ok = !overlaps(&a);
+	if (ok) {
+		char what[80];
+		snprintf(what, sizeof what, "%s%s", kinds[kind], soup ? ", polygon soup" : "");
+		emit_obj(diffuse_mat("m"), (const double (*)[3])M.v, M.nv, M.fv, M.fs, M.nf, soup, what);
+		add_aabb(&a);
+		sb_printf(&desc, "; %s%s on %s", kinds[kind], soup ? " (soup)" : "", sup_name(s));
+	}
+	free(M.v);
+	free(M.fv);
+	free(M.fs);
+	return ok;
+}
+
 static void
 usage(void)
 {
@@ -727,14 +1027,30 @@ main(int argc, char **argv)
 	}
 	rng_state = seed * 0x2545f4914f6cdd1dull + 0x1234567;
 	form_state = seed * 0x9e3779b97f4a7c15ull + 0x7654321;
+	fam_state = seed * 0xd1342543de82ef95ull + 0x2468ace;
 	next64();
 
 	/* the room */
 	W = q(rnd(3, 6)); D = q(rnd(3, 6)); H = q(rnd(2.4, 3.2));
 	W = round(W * 100) / 100; D = round(D * 100) / 100; H = round(H * 100) / 100;
 	const char *wall = diffuse_mat("wall");
-	sb_printf(&geo, "box %s 0 0 0  %.2f %.2f %.2f inward\n", wall, W, H, D);
-	sb_printf(&desc, "room %.1fx%.1fx%.1f", W, D, H);
+	/* A fifth of the rooms are six separate quads facing in (a polygon
+	 * soup of walls, as modelling tools export a room), not one closed box. */
+	if (fam_chance(0.2)) {
+		double c[6][4][3] = {
+			{ { 0, 0, 0 }, { 0, 0, D }, { W, 0, D }, { W, 0, 0 } },
+			{ { 0, H, 0 }, { W, H, 0 }, { W, H, D }, { 0, H, D } },
+			{ { 0, 0, 0 }, { W, 0, 0 }, { W, H, 0 }, { 0, H, 0 } },
+			{ { 0, 0, D }, { 0, H, D }, { W, H, D }, { W, 0, D } },
+			{ { 0, 0, 0 }, { 0, H, 0 }, { 0, H, D }, { 0, 0, D } },
+			{ { W, 0, 0 }, { W, 0, D }, { W, H, D }, { W, H, 0 } } };
+		for (int i = 0; i < 6; i++)
+			emit_quad4(wall, (const double (*)[3])c[i]);
+		sb_printf(&desc, "room of six quads %.1fx%.1fx%.1f", W, D, H);
+	} else {
+		sb_printf(&geo, "box %s 0 0 0  %.2f %.2f %.2f inward\n", wall, W, H, D);
+		sb_printf(&desc, "room %.1fx%.1fx%.1f", W, D, H);
+	}
 	/* the floor: the room's own, or a quad laid over it */
 	floor_y = 0;
 	if (chance(0.5)) {
@@ -800,6 +1116,19 @@ main(int argc, char **argv)
 			if (geo.s) geo.s[geo.n] = 0;
 			if (desc.s) desc.s[desc.n] = 0;
 		}
+	}
+	/* A curved mesh besides, from the families' stream. */
+	if (fam_chance(0.25)) {
+		fam_begin();
+		for (int tries = 0; tries < 20; tries++) {
+			int nm0 = nmat;
+			if (item_curved()) {
+				placed++;
+				break;
+			}
+			nmat = nm0;
+		}
+		fam_end();
 	}
 	if (!placed) {  /* cannot happen in practice: a sphere always fits */
 		const char *m = diffuse_mat("m");
