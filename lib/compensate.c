@@ -75,6 +75,15 @@ typedef struct cpoly {
 	double adyn;           /* ... their area seen from x' */
 } cpoly;
 
+/* A node of the tree over the cube's polygons: a sphere holding its
+ * polygons' bounding spheres; a leaf (n > 0) lists ord[a .. a + n - 1], an
+ * inner node has its first child next and its second at a. */
+typedef struct cnode {
+	pm_dvec3 c;
+	double rad;
+	int a, n;
+} cnode;
+
 struct pm_comp_scratch {
 	int k;
 	pm_nn *nn;
@@ -101,6 +110,13 @@ struct pm_comp_scratch {
 	int *sf;               /* a covered sample's fate, the same for every
 	                          direction (unused for dynamic ones) */
 	int nsp, spcap;
+	pm_dvec3 *pyr;         /* one polygon's pyramid from x' (pyramid()) */
+	double *span;          /* every polygon's span about one plane */
+	int spancap;
+	cnode *node;           /* a tree over the cube's polygons (hide_tree()) */
+	int nnode, nodecap;
+	int *ord, ordcap;      /* its polygon numbers, in leaf order */
+	int npyr, pyrcap;
 	int oom;
 	pm_comp_stats last;
 };
@@ -157,6 +173,10 @@ pm_comp_scratch_free(pm_comp_scratch *sc)
 	free(sc->sp);
 	free(sc->sf);
 	free(sc->ov);
+	free(sc->pyr);
+	free(sc->span);
+	free(sc->node);
+	free(sc->ord);
 	free(sc);
 }
 
@@ -441,25 +461,26 @@ span(const pm_comp_scratch *sc, const cpoly *Q, pm_dvec3 M, double m, double *lo
 	}
 }
 
-/* 0 if B lies outside the pyramid from x' over P, so that no segment from
- * x' to P can cross it: behind P's plane, or beyond one of the planes
- * through x' and an edge of P (P convex; otherwise 1). */
+/* The pyramid from x' over P that between() tests against, worked out once
+ * per P: the planes through x' and P's edges, each oriented so that a
+ * point beyond it has t < -eps, up to the first edge where the pyramid test
+ * gives up (P not convex as seen from x', or x' in an edge's plane): past
+ * it every B counts as between. */
 static int
-between(const pm_comp_scratch *sc, const cpoly *P, const cpoly *B, pm_dvec3 xo, double eps)
+pyramid(pm_comp_scratch *sc, const cpoly *P, pm_dvec3 xo, double eps)
 {
 	const pm_dvec3 *v = sc->cv + P->v0;
-	double sxo = pm_ddot(P->N, xo) - P->d, lo, hi;
 	pm_dvec3 c = pm_dv3(0, 0, 0);
 
-	span(sc, B, P->N, P->d, &lo, &hi);
-	if (sxo > 0 ? hi <= eps : lo >= -eps)
+	sc->npyr = 0;
+	if (!grow((void **)&sc->pyr, &sc->pyrcap, 0, P->nv, sizeof *sc->pyr))
 		return 0;
 	for (int i = 0; i < P->nv; i++)
 		c = pm_dadd(c, v[i]);
 	c = pm_dscale(c, 1.0 / P->nv);
 	for (int i = 0, j = P->nv - 1; i < P->nv; j = i++) {
 		pm_dvec3 m = pm_dcross(pm_dsub(v[i], xo), pm_dsub(v[j], xo));
-		double ml = pm_dlen(m), sc0, out = 1;
+		double ml = pm_dlen(m), sc0;
 		if (!(ml > 0))
 			continue;
 		m = pm_dscale(m, 1 / ml);
@@ -470,10 +491,36 @@ between(const pm_comp_scratch *sc, const cpoly *P, const cpoly *B, pm_dvec3 xo, 
 			if ((pm_ddot(m, pm_dsub(v[k], xo)) > eps) != (sc0 > 0) &&
 			    fabs(pm_ddot(m, pm_dsub(v[k], xo))) > eps)
 				return 1;   /* not convex as seen from x' */
-		for (int k = 0; k < B->nv && out; k++) {
-			double t = pm_ddot(m, pm_dsub(sc->cv[B->v0 + k], xo));
-			out = sc0 > 0 ? t < -eps : t > eps;
-		}
+		/* Negation is exact: t < -eps for -m is t > eps for m. */
+		sc->pyr[sc->npyr++] = sc0 > 0 ? m : pm_dscale(m, -1);
+	}
+	return 1;
+}
+
+/* 0 if B lies outside the pyramid from x' over P (pyramid() of P), so that
+ * no segment from x' to P can cross it: behind P's plane, or beyond one of
+ * the planes through x' and an edge of P (P convex; otherwise 1). */
+static int
+between(const pm_comp_scratch *sc, const cpoly *P, const cpoly *B, pm_dvec3 xo, double eps)
+{
+	double sxo = pm_ddot(P->N, xo) - P->d, lo, hi;
+
+	span(sc, B, P->N, P->d, &lo, &hi);
+	if (sxo > 0 ? hi <= eps : lo >= -eps)
+		return 0;
+	for (int p = 0; p < sc->npyr; p++) {
+		pm_dvec3 m = sc->pyr[p];
+		/* B's bounding sphere decides unless it straddles -eps (the
+		 * margin keeps rounding from deciding otherwise than the
+		 * vertices would). */
+		double tc = pm_ddot(m, pm_dsub(B->c, xo)), r = B->rad * (1 + 1e-9) + 1e-12 * fabs(tc);
+		if (tc - r >= -eps)
+			continue;
+		if (tc + r < -eps)
+			return 0;
+		int out = 1;
+		for (int k = 0; k < B->nv && out; k++)
+			out = pm_ddot(m, pm_dsub(sc->cv[B->v0 + k], xo)) < -eps;
 		if (out)
 			return 0;
 	}
@@ -509,6 +556,119 @@ close_matter(pm_comp_scratch *sc, int f0, int skip)
 	return sc->nbl;
 }
 
+/* Fewer polygons than this in the cube: R lists test every pair. */
+#define TREE_MIN 12
+#define LEAF 4
+
+static int
+cmp_axis(const pm_comp_scratch *sc, int i, int j, int ax)
+{
+	double a = comp(sc->g[i].c, ax), b = comp(sc->g[j].c, ax);
+	return a < b ? -1 : a > b ? 1 : (i > j) - (i < j);
+}
+
+/* Sorts ord[lo .. hi - 1] by their polygons' centres along ax (an
+ * insertion sort for short runs, else a heap sort: no recursion, same
+ * order whatever the input order, the index breaking ties). */
+static void
+sort_axis(pm_comp_scratch *sc, int lo, int hi, int ax)
+{
+	int *v = sc->ord + lo, n = hi - lo;
+
+	for (int start = n / 2 - 1, end = n; ; ) {
+		int root, child, t;
+		if (start >= 0)
+			root = start--;
+		else {
+			if (--end <= 0)
+				break;
+			t = v[0], v[0] = v[end], v[end] = t;
+			root = 0;
+		}
+		while ((child = 2 * root + 1) < end) {
+			if (child + 1 < end && cmp_axis(sc, v[child], v[child + 1], ax) < 0)
+				child++;
+			if (cmp_axis(sc, v[root], v[child], ax) >= 0)
+				break;
+			t = v[root], v[root] = v[child], v[child] = t;
+			root = child;
+		}
+	}
+}
+
+/* Node over ord[lo .. hi - 1] and its subtree; returns its index. */
+static int
+build_node(pm_comp_scratch *sc, int lo, int hi)
+{
+	int me = sc->nnode++, ax = 0;
+	double bl[3] = {INFINITY, INFINITY, INFINITY}, bh[3] = {-INFINITY, -INFINITY, -INFINITY};
+	cnode *N;
+
+	for (int i = lo; i < hi; i++) {
+		const cpoly *B = &sc->g[sc->ord[i]];
+		for (int a = 0; a < 3; a++) {
+			bl[a] = dmin(bl[a], comp(B->c, a) - B->rad);
+			bh[a] = dmax(bh[a], comp(B->c, a) + B->rad);
+		}
+	}
+	N = &sc->node[me];
+	N->c = pm_dv3(0.5 * (bl[0] + bh[0]), 0.5 * (bl[1] + bh[1]), 0.5 * (bl[2] + bh[2]));
+	N->rad = 0;
+	for (int i = lo; i < hi; i++) {
+		const cpoly *B = &sc->g[sc->ord[i]];
+		N->rad = dmax(N->rad, pm_dlen(pm_dsub(B->c, N->c)) + B->rad);
+	}
+	/* Padded: a node rejects only what each of its polygons' own
+	 * spheres would reject, rounding included. */
+	N->rad = N->rad * (1 + 1e-8) + 1e-12 * pm_dlen(N->c);
+	if (hi - lo <= LEAF) {
+		N->a = lo;
+		N->n = hi - lo;
+		return me;
+	}
+	for (int a = 1; a < 3; a++)
+		if (bh[a] - bl[a] > bh[ax] - bl[ax])
+			ax = a;
+	sort_axis(sc, lo, hi, ax);
+	int mid = (lo + hi) / 2;
+	build_node(sc, lo, mid);
+	int right = build_node(sc, mid, hi);
+	sc->node[me].a = right;
+	sc->node[me].n = 0;
+	return me;
+}
+
+static int
+hide_tree(pm_comp_scratch *sc)
+{
+	int ng = sc->ng;
+
+	sc->nnode = 0;
+	if (!grow((void **)&sc->ord, &sc->ordcap, 0, ng, sizeof *sc->ord) ||
+	    !grow((void **)&sc->node, &sc->nodecap, 0, 2 * ng, sizeof *sc->node))
+		return 0;
+	for (int i = 0; i < ng; i++)
+		sc->ord[i] = i;
+	build_node(sc, 0, ng);
+	return 1;
+}
+
+/* 1 if the polygons under node N may lie between x' and P: N's sphere is
+ * neither wholly behind P (as between() sees it) nor wholly beyond one of
+ * the pyramid's planes. */
+static int
+node_between(const pm_comp_scratch *sc, const cpoly *P, const cnode *N, pm_dvec3 xo, double eps)
+{
+	double sxo = pm_ddot(P->N, xo) - P->d, t = pm_ddot(P->N, N->c) - P->d;
+
+	if (sxo > 0 ? t + N->rad <= eps : t - N->rad >= -eps)
+		return 0;
+	for (int p = 0; p < sc->npyr; p++)
+		if (pm_ddot(sc->pyr[p], pm_dsub(N->c, xo)) + N->rad < -eps)
+			return 0;
+	return 1;
+}
+
 /* For each polygon: which others may hide part of it from x' (R list), and
  * which a backward ray from it may meet so that its fate differs from the
  * open one (F list): layers over it (|N_b . N| >= LAYER_COS) with some part
@@ -523,11 +683,16 @@ pair_lists(pm_comp_scratch *sc, const unsigned char *cvx, pm_dvec3 xo, pm_dvec3 
 	sc->nbl = 0;
 	if (!grow((void **)&sc->bl, &sc->blcap, 0, 3 * ng * ng + 3 * ng + 1, sizeof *sc->bl))
 		return 0;
+	if (!grow((void **)&sc->span, &sc->spancap, 0, 2 * ng, sizeof *sc->span))
+		return 0;
 	int xobj[4], nxobj = 0;
 
 	for (int b = 0; b < ng; b++)
 		if (sc->g[b].xon && nxobj < 4)
 			xobj[nxobj++] = sc->g[b].obj;
+	int tree = ng >= TREE_MIN;
+	if (tree && !hide_tree(sc))
+		return 0;
 	for (int a = 0; a < ng; a++) {
 		cpoly *P = &sc->g[a];
 		int own = nxobj == 4;
@@ -538,20 +703,43 @@ pair_lists(pm_comp_scratch *sc, const unsigned char *cvx, pm_dvec3 xo, pm_dvec3 
 		for (int b = 0; b < nxobj && !own; b++)
 			own = xobj[b] == P->obj && pm_ddot(P->N, n) >= SMOOTH_COS;
 		P->unseen = P->solid && !own && pm_ddot(P->N, xo) - P->d < -eps;
-		for (int b = 0; b < ng && !P->unseen; b++) {
-			const cpoly *B = &sc->g[b];
-			double sx, lo, hi;
-			/* One convex solid's faces never hide each other, and x
-			 * sees its own solid's nearly flat neighbours through it. */
-			if (b == a || (B->obj == P->obj && cvx[P->obj]) ||
-			    (B->xon && B->solid && B->obj == P->obj && own))
-				continue;
-			sx = pm_ddot(B->N, xo) - B->d;
-			if (fabs(sx) <= eps)
-				continue;
-			span(sc, P, B->N, B->d, &lo, &hi);
-			if ((sx > 0 ? lo < -eps : hi > eps) && between(sc, P, B, xo, eps))
-				sc->bl[sc->nbl++] = b;
+		if (!P->unseen && !pyramid(sc, P, xo, eps))
+			return 0;
+		/* Only polygons under tree nodes that may lie between x' and
+		 * P are tried (with few polygons, all of them). */
+		int stack[64], ns = 0;
+		if (!P->unseen)
+			stack[ns++] = tree ? 0 : -1;
+		while (ns > 0) {
+			int top = stack[--ns], lo0 = 0, hi0 = ng;
+			if (top >= 0) {
+				const cnode *N = &sc->node[top];
+				if (!node_between(sc, P, N, xo, eps))
+					continue;
+				if (N->n == 0) {
+					stack[ns++] = N->a;
+					stack[ns++] = top + 1;
+					continue;
+				}
+				lo0 = N->a;
+				hi0 = N->a + N->n;
+			}
+			for (int i = lo0; i < hi0; i++) {
+				int b = top >= 0 ? sc->ord[i] : i;
+				const cpoly *B = &sc->g[b];
+				double sx, lo, hi;
+				/* One convex solid's faces never hide each other, and x
+				 * sees its own solid's nearly flat neighbours through it. */
+				if (b == a || (B->obj == P->obj && cvx[P->obj]) ||
+				    (B->xon && B->solid && B->obj == P->obj && own))
+					continue;
+				sx = pm_ddot(B->N, xo) - B->d;
+				if (fabs(sx) <= eps)
+					continue;
+				span(sc, P, B->N, B->d, &lo, &hi);
+				if ((sx > 0 ? lo < -eps : hi > eps) && between(sc, P, B, xo, eps))
+					sc->bl[sc->nbl++] = b;
+			}
 		}
 		P->nr = sc->nbl - P->r0;
 		P->f0 = sc->nbl;
@@ -562,7 +750,10 @@ pair_lists(pm_comp_scratch *sc, const unsigned char *cvx, pm_dvec3 xo, pm_dvec3 
 				int layer = fabs(pm_ddot(B->N, P->N)) >= LAYER_COS, cand = 0, on;
 				if (b == a)
 					continue;
-				span(sc, B, P->Ne, P->de, &lo, &hi);
+				if (pass == 0)
+					span(sc, B, P->Ne, P->de, &sc->span[2 * b], &sc->span[2 * b + 1]);
+				lo = sc->span[2 * b];
+				hi = sc->span[2 * b + 1];
 				on = layer && hi <= eps && lo >= -eps;
 				if (on != (pass == 0))
 					continue;
