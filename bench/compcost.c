@@ -23,14 +23,14 @@
 #include <time.h>
 #include <unistd.h>
 
-#include "accel.h"
-#include "camera.h"
-#include "compensate.h"
-#include "estimate.h"
-#include "frame.h"
-#include "kdtree.h"
-#include "scene.h"
-#include "shoot.h"
+#include "scene/accel.h"
+#include "scene/camera.h"
+#include "estimators/compensate.h"
+#include "estimators/estimate.h"
+#include "optics/frame.h"
+#include "formats/kdtree.h"
+#include "scene/scene.h"
+#include "passes/shoot.h"
 #include "timing.h"
 
 #define NBIN 16

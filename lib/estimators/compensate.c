@@ -70,19 +70,12 @@ typedef struct cpoly {
 	                          those covered for every direction */
 	int ncell;             /* cells its area was shared among */
 	int unseen;            /* a solid's face turned away from x': not seen */
+	int lit;               /* faces some photon used: else nothing of it counts,
+	                          and it needs no lists and no samples */
 	double aopen;          /* area seen from x', not covered by a polygon on its plane */
 	int ndyn;              /* samples whose fate depends on the direction */
 	double adyn;           /* ... their area seen from x' */
 } cpoly;
-
-/* A node of the tree over the cube's polygons: a sphere holding its
- * polygons' bounding spheres; a leaf (n > 0) lists ord[a .. a + n - 1], an
- * inner node has its first child next and its second at a. */
-typedef struct cnode {
-	pm_dvec3 c;
-	double rad;
-	int a, n;
-} cnode;
 
 struct pm_comp_scratch {
 	int k;
@@ -113,9 +106,10 @@ struct pm_comp_scratch {
 	pm_dvec3 *pyr;         /* one polygon's pyramid from x' (pyramid()) */
 	double *span;          /* every polygon's span about one plane */
 	int spancap;
-	cnode *node;           /* a tree over the cube's polygons (hide_tree()) */
-	int nnode, nodecap;
-	int *ord, ordcap;      /* its polygon numbers, in leaf order */
+	double *pl;            /* the polygons' planes, one array per number
+	                          (N.x, N.y, N.z, d, N . x' - d), and ... */
+	double *t;             /* ... each plane's N . c - d for one centre c */
+	int plcap, tcap;
 	int npyr, pyrcap;
 	int oom;
 	pm_comp_stats last;
@@ -175,8 +169,8 @@ pm_comp_scratch_free(pm_comp_scratch *sc)
 	free(sc->ov);
 	free(sc->pyr);
 	free(sc->span);
-	free(sc->node);
-	free(sc->ord);
+	free(sc->pl);
+	free(sc->t);
 	free(sc);
 }
 
@@ -441,6 +435,9 @@ reach(const pm_comp_scratch *sc, const cpoly *P, const cpoly *B, pm_dvec3 psi, d
 
 /* Signed distances of Q's clipped vertices to the plane (M, m): the largest
  * and the smallest. */
+static void span_verts(const pm_comp_scratch *sc, const cpoly *Q, pm_dvec3 M, double m,
+                       double *lo, double *hi);
+
 static void
 span(const pm_comp_scratch *sc, const cpoly *Q, pm_dvec3 M, double m, double *lo, double *hi)
 {
@@ -452,6 +449,13 @@ span(const pm_comp_scratch *sc, const cpoly *Q, pm_dvec3 M, double m, double *lo
 		*hi = c + Q->rad;
 		return;
 	}
+	span_verts(sc, Q, M, m, lo, hi);
+}
+
+/* span() from the vertices alone. */
+static void
+span_verts(const pm_comp_scratch *sc, const cpoly *Q, pm_dvec3 M, double m, double *lo, double *hi)
+{
 	*lo = INFINITY;
 	*hi = -INFINITY;
 	for (int i = 0; i < Q->nv; i++) {
@@ -556,119 +560,6 @@ close_matter(pm_comp_scratch *sc, int f0, int skip)
 	return sc->nbl;
 }
 
-/* Fewer polygons than this in the cube: R lists test every pair. */
-#define TREE_MIN 12
-#define LEAF 4
-
-static int
-cmp_axis(const pm_comp_scratch *sc, int i, int j, int ax)
-{
-	double a = comp(sc->g[i].c, ax), b = comp(sc->g[j].c, ax);
-	return a < b ? -1 : a > b ? 1 : (i > j) - (i < j);
-}
-
-/* Sorts ord[lo .. hi - 1] by their polygons' centres along ax (an
- * insertion sort for short runs, else a heap sort: no recursion, same
- * order whatever the input order, the index breaking ties). */
-static void
-sort_axis(pm_comp_scratch *sc, int lo, int hi, int ax)
-{
-	int *v = sc->ord + lo, n = hi - lo;
-
-	for (int start = n / 2 - 1, end = n; ; ) {
-		int root, child, t;
-		if (start >= 0)
-			root = start--;
-		else {
-			if (--end <= 0)
-				break;
-			t = v[0], v[0] = v[end], v[end] = t;
-			root = 0;
-		}
-		while ((child = 2 * root + 1) < end) {
-			if (child + 1 < end && cmp_axis(sc, v[child], v[child + 1], ax) < 0)
-				child++;
-			if (cmp_axis(sc, v[root], v[child], ax) >= 0)
-				break;
-			t = v[root], v[root] = v[child], v[child] = t;
-			root = child;
-		}
-	}
-}
-
-/* Node over ord[lo .. hi - 1] and its subtree; returns its index. */
-static int
-build_node(pm_comp_scratch *sc, int lo, int hi)
-{
-	int me = sc->nnode++, ax = 0;
-	double bl[3] = {INFINITY, INFINITY, INFINITY}, bh[3] = {-INFINITY, -INFINITY, -INFINITY};
-	cnode *N;
-
-	for (int i = lo; i < hi; i++) {
-		const cpoly *B = &sc->g[sc->ord[i]];
-		for (int a = 0; a < 3; a++) {
-			bl[a] = dmin(bl[a], comp(B->c, a) - B->rad);
-			bh[a] = dmax(bh[a], comp(B->c, a) + B->rad);
-		}
-	}
-	N = &sc->node[me];
-	N->c = pm_dv3(0.5 * (bl[0] + bh[0]), 0.5 * (bl[1] + bh[1]), 0.5 * (bl[2] + bh[2]));
-	N->rad = 0;
-	for (int i = lo; i < hi; i++) {
-		const cpoly *B = &sc->g[sc->ord[i]];
-		N->rad = dmax(N->rad, pm_dlen(pm_dsub(B->c, N->c)) + B->rad);
-	}
-	/* Padded: a node rejects only what each of its polygons' own
-	 * spheres would reject, rounding included. */
-	N->rad = N->rad * (1 + 1e-8) + 1e-12 * pm_dlen(N->c);
-	if (hi - lo <= LEAF) {
-		N->a = lo;
-		N->n = hi - lo;
-		return me;
-	}
-	for (int a = 1; a < 3; a++)
-		if (bh[a] - bl[a] > bh[ax] - bl[ax])
-			ax = a;
-	sort_axis(sc, lo, hi, ax);
-	int mid = (lo + hi) / 2;
-	build_node(sc, lo, mid);
-	int right = build_node(sc, mid, hi);
-	sc->node[me].a = right;
-	sc->node[me].n = 0;
-	return me;
-}
-
-static int
-hide_tree(pm_comp_scratch *sc)
-{
-	int ng = sc->ng;
-
-	sc->nnode = 0;
-	if (!grow((void **)&sc->ord, &sc->ordcap, 0, ng, sizeof *sc->ord) ||
-	    !grow((void **)&sc->node, &sc->nodecap, 0, 2 * ng, sizeof *sc->node))
-		return 0;
-	for (int i = 0; i < ng; i++)
-		sc->ord[i] = i;
-	build_node(sc, 0, ng);
-	return 1;
-}
-
-/* 1 if the polygons under node N may lie between x' and P: N's sphere is
- * neither wholly behind P (as between() sees it) nor wholly beyond one of
- * the pyramid's planes. */
-static int
-node_between(const pm_comp_scratch *sc, const cpoly *P, const cnode *N, pm_dvec3 xo, double eps)
-{
-	double sxo = pm_ddot(P->N, xo) - P->d, t = pm_ddot(P->N, N->c) - P->d;
-
-	if (sxo > 0 ? t + N->rad <= eps : t - N->rad >= -eps)
-		return 0;
-	for (int p = 0; p < sc->npyr; p++)
-		if (pm_ddot(sc->pyr[p], pm_dsub(N->c, xo)) + N->rad < -eps)
-			return 0;
-	return 1;
-}
-
 /* For each polygon: which others may hide part of it from x' (R list), and
  * which a backward ray from it may meet so that its fate differs from the
  * open one (F list): layers over it (|N_b . N| >= LAYER_COS) with some part
@@ -690,9 +581,23 @@ pair_lists(pm_comp_scratch *sc, const unsigned char *cvx, pm_dvec3 xo, pm_dvec3 
 	for (int b = 0; b < ng; b++)
 		if (sc->g[b].xon && nxobj < 4)
 			xobj[nxobj++] = sc->g[b].obj;
-	int tree = ng >= TREE_MIN;
-	if (tree && !hide_tree(sc))
+	if (!grow((void **)&sc->pl, &sc->plcap, 0, 9 * ng, sizeof *sc->pl) ||
+	    !grow((void **)&sc->t, &sc->tcap, 0, ng, sizeof *sc->t))
 		return 0;
+	double *plx = sc->pl, *ply = plx + ng, *plz = ply + ng, *pld = plz + ng, *plsx = pld + ng;
+	double *ccx = plsx + ng, *ccy = ccx + ng, *ccz = ccy + ng, *crad = ccz + ng;
+	for (int b = 0; b < ng; b++) {
+		const cpoly *B = &sc->g[b];
+		plx[b] = B->N.x;
+		ply[b] = B->N.y;
+		plz[b] = B->N.z;
+		pld[b] = B->d;
+		plsx[b] = pm_ddot(B->N, xo) - B->d;
+		ccx[b] = B->c.x;
+		ccy[b] = B->c.y;
+		ccz[b] = B->c.z;
+		crad[b] = B->rad;
+	}
 	for (int a = 0; a < ng; a++) {
 		cpoly *P = &sc->g[a];
 		int own = nxobj == 4;
@@ -703,55 +608,54 @@ pair_lists(pm_comp_scratch *sc, const unsigned char *cvx, pm_dvec3 xo, pm_dvec3 
 		for (int b = 0; b < nxobj && !own; b++)
 			own = xobj[b] == P->obj && pm_ddot(P->N, n) >= SMOOTH_COS;
 		P->unseen = P->solid && !own && pm_ddot(P->N, xo) - P->d < -eps;
-		if (!P->unseen && !pyramid(sc, P, xo, eps))
+		if (!P->unseen && P->lit && !pyramid(sc, P, xo, eps))
 			return 0;
-		/* Only polygons under tree nodes that may lie between x' and
-		 * P are tried (with few polygons, all of them). */
-		int stack[64], ns = 0;
-		if (!P->unseen)
-			stack[ns++] = tree ? 0 : -1;
-		while (ns > 0) {
-			int top = stack[--ns], lo0 = 0, hi0 = ng;
-			if (top >= 0) {
-				const cnode *N = &sc->node[top];
-				if (!node_between(sc, P, N, xo, eps))
-					continue;
-				if (N->n == 0) {
-					stack[ns++] = N->a;
-					stack[ns++] = top + 1;
-					continue;
-				}
-				lo0 = N->a;
-				hi0 = N->a + N->n;
-			}
-			for (int i = lo0; i < hi0; i++) {
-				int b = top >= 0 ? sc->ord[i] : i;
-				const cpoly *B = &sc->g[b];
-				double sx, lo, hi;
-				/* One convex solid's faces never hide each other, and x
-				 * sees its own solid's nearly flat neighbours through it. */
-				if (b == a || (B->obj == P->obj && cvx[P->obj]) ||
-				    (B->xon && B->solid && B->obj == P->obj && own))
-					continue;
-				sx = pm_ddot(B->N, xo) - B->d;
-				if (fabs(sx) <= eps)
-					continue;
-				span(sc, P, B->N, B->d, &lo, &hi);
-				if ((sx > 0 ? lo < -eps : hi > eps) && between(sc, P, B, xo, eps))
-					sc->bl[sc->nbl++] = b;
-			}
+		/* Which planes P's bounding sphere may reach beyond (span()'s
+		 * first step, for every plane at once): one pass that does
+		 * nothing else, then the other tests where it says maybe. */
+		double *t = sc->t, cx = P->c.x, cy = P->c.y, cz = P->c.z;
+		for (int b = 0; b < ng && !P->unseen && P->lit; b++)
+			t[b] = plx[b] * cx + ply[b] * cy + plz[b] * cz - pld[b];
+		for (int b = 0; b < ng && !P->unseen && P->lit; b++) {
+			const cpoly *B;
+			double sx = plsx[b], lo, hi;
+			if (fabs(sx) <= eps || b == a)
+				continue;
+			/* P's sphere wholly on x''s side of B's plane: P cannot
+			 * cross it (span() would give the same). */
+			if (fabs(t[b]) > P->rad && (sx > 0 ? t[b] - P->rad >= -eps : t[b] + P->rad <= eps))
+				continue;
+			B = &sc->g[b];
+			/* One convex solid's faces never hide each other, and x
+			 * sees its own solid's nearly flat neighbours through it. */
+			if ((B->obj == P->obj && cvx[P->obj]) ||
+			    (B->xon && B->solid && B->obj == P->obj && own))
+				continue;
+			if (fabs(t[b]) > P->rad)
+				lo = t[b] - P->rad, hi = t[b] + P->rad;
+			else
+				span_verts(sc, P, B->N, B->d, &lo, &hi);
+			if ((sx > 0 ? lo < -eps : hi > eps) && between(sc, P, B, xo, eps))
+				sc->bl[sc->nbl++] = b;
 		}
 		P->nr = sc->nbl - P->r0;
 		P->f0 = sc->nbl;
-		for (int pass = 0; pass < 2 && ng <= FATE_MAX_POLYS; pass++) {
+		/* span() of every polygon about P's plane, its first step at once. */
+		double ex = P->Ne.x, ey = P->Ne.y, ez = P->Ne.z, de = P->de;
+		for (int b = 0; b < ng && ng <= FATE_MAX_POLYS && P->lit; b++)
+			t[b] = ex * ccx[b] + ey * ccy[b] + ez * ccz[b] - de;
+		for (int pass = 0; pass < 2 && ng <= FATE_MAX_POLYS && P->lit; pass++) {
 			for (int b = 0; b < ng; b++) {
 				const cpoly *B = &sc->g[b];
 				double lo, hi, plo, phi;
 				int layer = fabs(pm_ddot(B->N, P->N)) >= LAYER_COS, cand = 0, on;
 				if (b == a)
 					continue;
-				if (pass == 0)
-					span(sc, B, P->Ne, P->de, &sc->span[2 * b], &sc->span[2 * b + 1]);
+				if (pass == 0 && fabs(t[b]) > crad[b]) {
+					sc->span[2 * b] = t[b] - crad[b];
+					sc->span[2 * b + 1] = t[b] + crad[b];
+				} else if (pass == 0)
+					span_verts(sc, B, P->Ne, P->de, &sc->span[2 * b], &sc->span[2 * b + 1]);
 				lo = sc->span[2 * b];
 				hi = sc->span[2 * b + 1];
 				on = layer && hi <= eps && lo >= -eps;
@@ -774,7 +678,7 @@ pair_lists(pm_comp_scratch *sc, const unsigned char *cvx, pm_dvec3 xo, pm_dvec3 
 			if (pass == 0)
 				P->nfc = sc->nbl - P->f0;
 		}
-		if (ng <= FATE_MAX_POLYS)
+		if (ng <= FATE_MAX_POLYS && P->lit)
 			close_matter(sc, P->f0 + P->nfc, a);
 		if (ng > FATE_MAX_POLYS)
 			P->nfc = 0;
@@ -1034,6 +938,9 @@ weights(const pm_polyindex *pi, pm_vec3 x, pm_vec3 n,
 		P->convex = pm_poly_convex(sc->cv + P->v0, P->nv, P->N);
 		P->nfc = P->ndyn = 0;
 		P->adyn = 0;
+		P->lit = 0;
+		for (int j = 0; j < na && !P->lit; j++)
+			P->lit = facing(P, sc->psi[j], sc->c[j], nd) > 0;
 	}
 	if (sc->ng > 1) {
 		if (!pair_lists(sc, pi->convex, xo, nd, eps, &xf0, &nxf))
