@@ -4,6 +4,7 @@
  * centres), one thread, each timed alone (thread CPU time).
  *
  *   compcost [-n PHOTONS] [-k K] [-r RUNS] [-o FILE] SCENE
+ *   compcost -t SCENE      (prints the scene's triangles and stops)
  *
  * Prints "name<TAB>value" lines: the median over RUNS of the mean time per
  * estimate, classical and compensated, their ratio, a checksum of the
@@ -65,19 +66,20 @@ int
 main(int argc, char **argv)
 {
 	long nph = 200000;
-	int k = 50, runs = 3, c;
+	int k = 50, runs = 3, c, tris_only = 0;
 	const char *out = NULL;
 	pm_scene s;
 	pm_frame fr;
 	pm_camera cam;
 	pm_error err;
 
-	while ((c = getopt(argc, argv, "k:n:o:r:")) != -1) {
+	while ((c = getopt(argc, argv, "k:n:o:r:t")) != -1) {
 		switch (c) {
 		case 'k': k = atoi(optarg); break;
 		case 'n': nph = atol(optarg); break;
 		case 'o': out = optarg; break;
 		case 'r': runs = atoi(optarg); break;
+		case 't': tris_only = 1; break;
 		default:
 			fprintf(stderr, "usage: compcost [-n PHOTONS] [-k K] [-r RUNS] [-o FILE] SCENE\n");
 			return 2;
@@ -91,6 +93,10 @@ main(int argc, char **argv)
 	omp_set_num_threads(1);
 	if (pm_scene_load(&s, path, &err))
 		die(path, err.msg);
+	if (tris_only) {
+		printf("triangles\t%u\n", s.ntris);
+		return 0;
+	}
 	if (pm_frame_build(&fr, &s, 0, PM_NEEDS_POLYINDEX, &err) || pm_camera_init(&cam, &s.camera, &err))
 		die(path, err.msg);
 
@@ -163,7 +169,7 @@ main(int argc, char **argv)
 			hsh = (hsh ^ b[i]) * 1099511628211ull;
 	}
 	double ucl = 1e6 * median(tv, runs) / ne, uco = 1e6 * median(tw, runs) / ne;
-	printf("scene\t%s\nestimates\t%ld\nk\t%d\nphotons_in_map\t%llu\n", path, ne, k,
+	printf("scene\t%s\ntriangles\t%u\nestimates\t%ld\nk\t%d\nphotons_in_map\t%llu\n", path, s.ntris, ne, k,
 	       (unsigned long long)ph.h.count);
 	printf("us_classical\t%.3f\nus_compensated\t%.3f\ncompensated_over_classical\t%.3f\n",
 	       ucl, uco, uco / ucl);
