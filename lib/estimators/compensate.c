@@ -108,7 +108,8 @@ struct pm_comp_scratch {
 	int spancap;
 	double *pl;            /* the polygons' planes, one array per number
 	                          (N.x, N.y, N.z, d, N . x' - d), and ... */
-	double *t;             /* ... each plane's N . c - d for one centre c */
+	double *t;             /* ... each plane's N . c - d for one centre c,
+	                          and one plane's for every centre */
 	int plcap, tcap;
 	int npyr, pyrcap;
 	int oom;
@@ -503,13 +504,17 @@ pyramid(pm_comp_scratch *sc, const cpoly *P, pm_dvec3 xo, double eps)
 
 /* 0 if B lies outside the pyramid from x' over P (pyramid() of P), so that
  * no segment from x' to P can cross it: behind P's plane, or beyond one of
- * the planes through x' and an edge of P (P convex; otherwise 1). */
+ * the planes through x' and an edge of P (P convex; otherwise 1). u is
+ * N_P . c_B - d_P (span()'s first step). */
 static int
-between(const pm_comp_scratch *sc, const cpoly *P, const cpoly *B, pm_dvec3 xo, double eps)
+between(const pm_comp_scratch *sc, const cpoly *P, const cpoly *B, pm_dvec3 xo, double eps, double u)
 {
 	double sxo = pm_ddot(P->N, xo) - P->d, lo, hi;
 
-	span(sc, B, P->N, P->d, &lo, &hi);
+	if (fabs(u) > B->rad)
+		lo = u - B->rad, hi = u + B->rad;
+	else
+		span_verts(sc, B, P->N, P->d, &lo, &hi);
 	if (sxo > 0 ? hi <= eps : lo >= -eps)
 		return 0;
 	for (int p = 0; p < sc->npyr; p++) {
@@ -582,7 +587,7 @@ pair_lists(pm_comp_scratch *sc, const unsigned char *cvx, pm_dvec3 xo, pm_dvec3 
 		if (sc->g[b].xon && nxobj < 4)
 			xobj[nxobj++] = sc->g[b].obj;
 	if (!grow((void **)&sc->pl, &sc->plcap, 0, 9 * ng, sizeof *sc->pl) ||
-	    !grow((void **)&sc->t, &sc->tcap, 0, ng, sizeof *sc->t))
+	    !grow((void **)&sc->t, &sc->tcap, 0, 2 * ng, sizeof *sc->t))
 		return 0;
 	double *plx = sc->pl, *ply = plx + ng, *plz = ply + ng, *pld = plz + ng, *plsx = pld + ng;
 	double *ccx = plsx + ng, *ccy = ccx + ng, *ccz = ccy + ng, *crad = ccz + ng;
@@ -613,9 +618,12 @@ pair_lists(pm_comp_scratch *sc, const unsigned char *cvx, pm_dvec3 xo, pm_dvec3 
 		/* Which planes P's bounding sphere may reach beyond (span()'s
 		 * first step, for every plane at once): one pass that does
 		 * nothing else, then the other tests where it says maybe. */
-		double *t = sc->t, cx = P->c.x, cy = P->c.y, cz = P->c.z;
-		for (int b = 0; b < ng && !P->unseen && P->lit; b++)
+		double *t = sc->t, *u = t + ng, cx = P->c.x, cy = P->c.y, cz = P->c.z;
+		double nx = P->N.x, ny = P->N.y, nz = P->N.z, pd = P->d;
+		for (int b = 0; b < ng && !P->unseen && P->lit; b++) {
 			t[b] = plx[b] * cx + ply[b] * cy + plz[b] * cz - pld[b];
+			u[b] = nx * ccx[b] + ny * ccy[b] + nz * ccz[b] - pd;
+		}
 		for (int b = 0; b < ng && !P->unseen && P->lit; b++) {
 			const cpoly *B;
 			double sx = plsx[b], lo, hi;
@@ -635,7 +643,7 @@ pair_lists(pm_comp_scratch *sc, const unsigned char *cvx, pm_dvec3 xo, pm_dvec3 
 				lo = t[b] - P->rad, hi = t[b] + P->rad;
 			else
 				span_verts(sc, P, B->N, B->d, &lo, &hi);
-			if ((sx > 0 ? lo < -eps : hi > eps) && between(sc, P, B, xo, eps))
+			if ((sx > 0 ? lo < -eps : hi > eps) && between(sc, P, B, xo, eps, u[b]))
 				sc->bl[sc->nbl++] = b;
 		}
 		P->nr = sc->nbl - P->r0;
