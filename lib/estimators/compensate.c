@@ -6,7 +6,9 @@
  *
  * Cost: one k-nearest search; one pass over the polygons that meet the cube
  * (typically 1-3), clipping each once; pairwise tests between those
- * polygons to find which can hide which. Only polygons that something can
+ * polygons to find which can hide which, each polygon's planes and centres
+ * tested against one polygon in a flat pass first (on a dense mesh the
+ * pairs are the cost: bench/compcost.sh). Only polygons that something can
  * hide get sample points, and only their samples cost work per photon. All
  * geometry is double and relative to x. */
 #include "estimators/compensate.h"
@@ -434,11 +436,11 @@ reach(const pm_comp_scratch *sc, const cpoly *P, const cpoly *B, pm_dvec3 psi, d
 	return 1;
 }
 
-/* Signed distances of Q's clipped vertices to the plane (M, m): the largest
- * and the smallest. */
 static void span_verts(const pm_comp_scratch *sc, const cpoly *Q, pm_dvec3 M, double m,
                        double *lo, double *hi);
 
+/* Signed distances of Q's clipped vertices to the plane (M, m): the largest
+ * and the smallest. */
 static void
 span(const pm_comp_scratch *sc, const cpoly *Q, pm_dvec3 M, double m, double *lo, double *hi)
 {
@@ -629,8 +631,8 @@ pair_lists(pm_comp_scratch *sc, const unsigned char *cvx, pm_dvec3 xo, pm_dvec3 
 			double sx = plsx[b], lo, hi;
 			if (fabs(sx) <= eps || b == a)
 				continue;
-			/* P's sphere wholly on x''s side of B's plane: P cannot
-			 * cross it (span() would give the same). */
+			/* P's sphere wholly on the side of B's plane where x'
+			 * is: P cannot cross it (span() would say the same). */
 			if (fabs(t[b]) > P->rad && (sx > 0 ? t[b] - P->rad >= -eps : t[b] + P->rad <= eps))
 				continue;
 			B = &sc->g[b];
