@@ -363,6 +363,14 @@ lever room "-p 64 -l 4" 100000 "-p 64 -l 4"
 # (issue 21; bench/families.sh, its prose in bench/sections/families.md)
 log "bench/families.sh $mode"
 BENCH_CACHE=$cache sh "$top/bench/families.sh" "$mode" "$B" >&2 || log "bench/families.sh failed"
+
+# ---- the compensated estimate's price: view pass against the classical one,
+# and one estimate against the polygons in its cube (bench/compcost.sh; its
+# prose is bench/sections/compcost.md)
+log "bench/compcost.sh"
+if [ "$mode" = quick ]; then cres="0.5 1"; else cres="0.5 1 2"; fi
+CURVE_RES=$cres BENCH_CACHE=$cache sh "$top/bench/compcost.sh" "$B" >&2 || log "bench/compcost.sh failed"
+
 # ---- the optional modes' own benchmarks (full mode only: tens of minutes) --
 # Each writes its TSVs and plots to bench/results; their prose lives in
 # bench/sections/ (appended to BENCHMARKS.md by report.sh).

@@ -6,7 +6,9 @@
  *
  * Cost: one k-nearest search; one pass over the polygons that meet the cube
  * (typically 1-3), clipping each once; pairwise tests between those
- * polygons to find which can hide which. Only polygons that something can
+ * polygons to find which can hide which, each polygon's planes and centres
+ * tested against one polygon in a flat pass first (on a dense mesh the
+ * pairs are the cost: bench/compcost.sh). Only polygons that something can
  * hide get sample points, and only their samples cost work per photon. All
  * geometry is double and relative to x. */
 #include "estimators/compensate.h"
@@ -70,6 +72,8 @@ typedef struct cpoly {
 	                          those covered for every direction */
 	int ncell;             /* cells its area was shared among */
 	int unseen;            /* a solid's face turned away from x': not seen */
+	int lit;               /* faces some photon used: else nothing of it counts,
+	                          and it needs no lists and no samples */
 	double aopen;          /* area seen from x', not covered by a polygon on its plane */
 	int ndyn;              /* samples whose fate depends on the direction */
 	double adyn;           /* ... their area seen from x' */
@@ -101,6 +105,15 @@ struct pm_comp_scratch {
 	int *sf;               /* a covered sample's fate, the same for every
 	                          direction (unused for dynamic ones) */
 	int nsp, spcap;
+	pm_dvec3 *pyr;         /* one polygon's pyramid from x' (pyramid()) */
+	double *span;          /* every polygon's span about one plane */
+	int spancap;
+	double *pl;            /* the polygons' planes, one array per number
+	                          (N.x, N.y, N.z, d, N . x' - d), and ... */
+	double *t;             /* ... each plane's N . c - d for one centre c,
+	                          and one plane's for every centre */
+	int plcap, tcap;
+	int npyr, pyrcap;
 	int oom;
 	pm_comp_stats last;
 };
@@ -157,6 +170,10 @@ pm_comp_scratch_free(pm_comp_scratch *sc)
 	free(sc->sp);
 	free(sc->sf);
 	free(sc->ov);
+	free(sc->pyr);
+	free(sc->span);
+	free(sc->pl);
+	free(sc->t);
 	free(sc);
 }
 
@@ -419,6 +436,9 @@ reach(const pm_comp_scratch *sc, const cpoly *P, const cpoly *B, pm_dvec3 psi, d
 	return 1;
 }
 
+static void span_verts(const pm_comp_scratch *sc, const cpoly *Q, pm_dvec3 M, double m,
+                       double *lo, double *hi);
+
 /* Signed distances of Q's clipped vertices to the plane (M, m): the largest
  * and the smallest. */
 static void
@@ -432,6 +452,13 @@ span(const pm_comp_scratch *sc, const cpoly *Q, pm_dvec3 M, double m, double *lo
 		*hi = c + Q->rad;
 		return;
 	}
+	span_verts(sc, Q, M, m, lo, hi);
+}
+
+/* span() from the vertices alone. */
+static void
+span_verts(const pm_comp_scratch *sc, const cpoly *Q, pm_dvec3 M, double m, double *lo, double *hi)
+{
 	*lo = INFINITY;
 	*hi = -INFINITY;
 	for (int i = 0; i < Q->nv; i++) {
@@ -441,25 +468,26 @@ span(const pm_comp_scratch *sc, const cpoly *Q, pm_dvec3 M, double m, double *lo
 	}
 }
 
-/* 0 if B lies outside the pyramid from x' over P, so that no segment from
- * x' to P can cross it: behind P's plane, or beyond one of the planes
- * through x' and an edge of P (P convex; otherwise 1). */
+/* The pyramid from x' over P that between() tests against, worked out once
+ * per P: the planes through x' and P's edges, each oriented so that a
+ * point beyond it has t < -eps, up to the first edge where the pyramid test
+ * gives up (P not convex as seen from x', or x' in an edge's plane): past
+ * it every B counts as between. */
 static int
-between(const pm_comp_scratch *sc, const cpoly *P, const cpoly *B, pm_dvec3 xo, double eps)
+pyramid(pm_comp_scratch *sc, const cpoly *P, pm_dvec3 xo, double eps)
 {
 	const pm_dvec3 *v = sc->cv + P->v0;
-	double sxo = pm_ddot(P->N, xo) - P->d, lo, hi;
 	pm_dvec3 c = pm_dv3(0, 0, 0);
 
-	span(sc, B, P->N, P->d, &lo, &hi);
-	if (sxo > 0 ? hi <= eps : lo >= -eps)
+	sc->npyr = 0;
+	if (!grow((void **)&sc->pyr, &sc->pyrcap, 0, P->nv, sizeof *sc->pyr))
 		return 0;
 	for (int i = 0; i < P->nv; i++)
 		c = pm_dadd(c, v[i]);
 	c = pm_dscale(c, 1.0 / P->nv);
 	for (int i = 0, j = P->nv - 1; i < P->nv; j = i++) {
 		pm_dvec3 m = pm_dcross(pm_dsub(v[i], xo), pm_dsub(v[j], xo));
-		double ml = pm_dlen(m), sc0, out = 1;
+		double ml = pm_dlen(m), sc0;
 		if (!(ml > 0))
 			continue;
 		m = pm_dscale(m, 1 / ml);
@@ -470,10 +498,40 @@ between(const pm_comp_scratch *sc, const cpoly *P, const cpoly *B, pm_dvec3 xo, 
 			if ((pm_ddot(m, pm_dsub(v[k], xo)) > eps) != (sc0 > 0) &&
 			    fabs(pm_ddot(m, pm_dsub(v[k], xo))) > eps)
 				return 1;   /* not convex as seen from x' */
-		for (int k = 0; k < B->nv && out; k++) {
-			double t = pm_ddot(m, pm_dsub(sc->cv[B->v0 + k], xo));
-			out = sc0 > 0 ? t < -eps : t > eps;
-		}
+		/* Negation is exact: t < -eps for -m is t > eps for m. */
+		sc->pyr[sc->npyr++] = sc0 > 0 ? m : pm_dscale(m, -1);
+	}
+	return 1;
+}
+
+/* 0 if B lies outside the pyramid from x' over P (pyramid() of P), so that
+ * no segment from x' to P can cross it: behind P's plane, or beyond one of
+ * the planes through x' and an edge of P (P convex; otherwise 1). u is
+ * N_P . c_B - d_P (span()'s first step). */
+static int
+between(const pm_comp_scratch *sc, const cpoly *P, const cpoly *B, pm_dvec3 xo, double eps, double u)
+{
+	double sxo = pm_ddot(P->N, xo) - P->d, lo, hi;
+
+	if (fabs(u) > B->rad)
+		lo = u - B->rad, hi = u + B->rad;
+	else
+		span_verts(sc, B, P->N, P->d, &lo, &hi);
+	if (sxo > 0 ? hi <= eps : lo >= -eps)
+		return 0;
+	for (int p = 0; p < sc->npyr; p++) {
+		pm_dvec3 m = sc->pyr[p];
+		/* B's bounding sphere decides unless it straddles -eps (the
+		 * margin keeps rounding from deciding otherwise than the
+		 * vertices would). */
+		double tc = pm_ddot(m, pm_dsub(B->c, xo)), r = B->rad * (1 + 1e-9) + 1e-12 * fabs(tc);
+		if (tc - r >= -eps)
+			continue;
+		if (tc + r < -eps)
+			return 0;
+		int out = 1;
+		for (int k = 0; k < B->nv && out; k++)
+			out = pm_ddot(m, pm_dsub(sc->cv[B->v0 + k], xo)) < -eps;
 		if (out)
 			return 0;
 	}
@@ -523,11 +581,30 @@ pair_lists(pm_comp_scratch *sc, const unsigned char *cvx, pm_dvec3 xo, pm_dvec3 
 	sc->nbl = 0;
 	if (!grow((void **)&sc->bl, &sc->blcap, 0, 3 * ng * ng + 3 * ng + 1, sizeof *sc->bl))
 		return 0;
+	if (!grow((void **)&sc->span, &sc->spancap, 0, 2 * ng, sizeof *sc->span))
+		return 0;
 	int xobj[4], nxobj = 0;
 
 	for (int b = 0; b < ng; b++)
 		if (sc->g[b].xon && nxobj < 4)
 			xobj[nxobj++] = sc->g[b].obj;
+	if (!grow((void **)&sc->pl, &sc->plcap, 0, 9 * ng, sizeof *sc->pl) ||
+	    !grow((void **)&sc->t, &sc->tcap, 0, 2 * ng, sizeof *sc->t))
+		return 0;
+	double *plx = sc->pl, *ply = plx + ng, *plz = ply + ng, *pld = plz + ng, *plsx = pld + ng;
+	double *ccx = plsx + ng, *ccy = ccx + ng, *ccz = ccy + ng, *crad = ccz + ng;
+	for (int b = 0; b < ng; b++) {
+		const cpoly *B = &sc->g[b];
+		plx[b] = B->N.x;
+		ply[b] = B->N.y;
+		plz[b] = B->N.z;
+		pld[b] = B->d;
+		plsx[b] = pm_ddot(B->N, xo) - B->d;
+		ccx[b] = B->c.x;
+		ccy[b] = B->c.y;
+		ccz[b] = B->c.z;
+		crad[b] = B->rad;
+	}
 	for (int a = 0; a < ng; a++) {
 		cpoly *P = &sc->g[a];
 		int own = nxobj == 4;
@@ -538,31 +615,59 @@ pair_lists(pm_comp_scratch *sc, const unsigned char *cvx, pm_dvec3 xo, pm_dvec3 
 		for (int b = 0; b < nxobj && !own; b++)
 			own = xobj[b] == P->obj && pm_ddot(P->N, n) >= SMOOTH_COS;
 		P->unseen = P->solid && !own && pm_ddot(P->N, xo) - P->d < -eps;
-		for (int b = 0; b < ng && !P->unseen; b++) {
-			const cpoly *B = &sc->g[b];
-			double sx, lo, hi;
+		if (!P->unseen && P->lit && !pyramid(sc, P, xo, eps))
+			return 0;
+		/* Which planes P's bounding sphere may reach beyond (span()'s
+		 * first step, for every plane at once): one pass that does
+		 * nothing else, then the other tests where it says maybe. */
+		double *t = sc->t, *u = t + ng, cx = P->c.x, cy = P->c.y, cz = P->c.z;
+		double nx = P->N.x, ny = P->N.y, nz = P->N.z, pd = P->d;
+		for (int b = 0; b < ng && !P->unseen && P->lit; b++) {
+			t[b] = plx[b] * cx + ply[b] * cy + plz[b] * cz - pld[b];
+			u[b] = nx * ccx[b] + ny * ccy[b] + nz * ccz[b] - pd;
+		}
+		for (int b = 0; b < ng && !P->unseen && P->lit; b++) {
+			const cpoly *B;
+			double sx = plsx[b], lo, hi;
+			if (fabs(sx) <= eps || b == a)
+				continue;
+			/* P's sphere wholly on the side of B's plane where x'
+			 * is: P cannot cross it (span() would say the same). */
+			if (fabs(t[b]) > P->rad && (sx > 0 ? t[b] - P->rad >= -eps : t[b] + P->rad <= eps))
+				continue;
+			B = &sc->g[b];
 			/* One convex solid's faces never hide each other, and x
 			 * sees its own solid's nearly flat neighbours through it. */
-			if (b == a || (B->obj == P->obj && cvx[P->obj]) ||
+			if ((B->obj == P->obj && cvx[P->obj]) ||
 			    (B->xon && B->solid && B->obj == P->obj && own))
 				continue;
-			sx = pm_ddot(B->N, xo) - B->d;
-			if (fabs(sx) <= eps)
-				continue;
-			span(sc, P, B->N, B->d, &lo, &hi);
-			if ((sx > 0 ? lo < -eps : hi > eps) && between(sc, P, B, xo, eps))
+			if (fabs(t[b]) > P->rad)
+				lo = t[b] - P->rad, hi = t[b] + P->rad;
+			else
+				span_verts(sc, P, B->N, B->d, &lo, &hi);
+			if ((sx > 0 ? lo < -eps : hi > eps) && between(sc, P, B, xo, eps, u[b]))
 				sc->bl[sc->nbl++] = b;
 		}
 		P->nr = sc->nbl - P->r0;
 		P->f0 = sc->nbl;
-		for (int pass = 0; pass < 2 && ng <= FATE_MAX_POLYS; pass++) {
+		/* span() of every polygon about P's plane, its first step at once. */
+		double ex = P->Ne.x, ey = P->Ne.y, ez = P->Ne.z, de = P->de;
+		for (int b = 0; b < ng && ng <= FATE_MAX_POLYS && P->lit; b++)
+			t[b] = ex * ccx[b] + ey * ccy[b] + ez * ccz[b] - de;
+		for (int pass = 0; pass < 2 && ng <= FATE_MAX_POLYS && P->lit; pass++) {
 			for (int b = 0; b < ng; b++) {
 				const cpoly *B = &sc->g[b];
 				double lo, hi, plo, phi;
 				int layer = fabs(pm_ddot(B->N, P->N)) >= LAYER_COS, cand = 0, on;
 				if (b == a)
 					continue;
-				span(sc, B, P->Ne, P->de, &lo, &hi);
+				if (pass == 0 && fabs(t[b]) > crad[b]) {
+					sc->span[2 * b] = t[b] - crad[b];
+					sc->span[2 * b + 1] = t[b] + crad[b];
+				} else if (pass == 0)
+					span_verts(sc, B, P->Ne, P->de, &sc->span[2 * b], &sc->span[2 * b + 1]);
+				lo = sc->span[2 * b];
+				hi = sc->span[2 * b + 1];
 				on = layer && hi <= eps && lo >= -eps;
 				if (on != (pass == 0))
 					continue;
@@ -583,7 +688,7 @@ pair_lists(pm_comp_scratch *sc, const unsigned char *cvx, pm_dvec3 xo, pm_dvec3 
 			if (pass == 0)
 				P->nfc = sc->nbl - P->f0;
 		}
-		if (ng <= FATE_MAX_POLYS)
+		if (ng <= FATE_MAX_POLYS && P->lit)
 			close_matter(sc, P->f0 + P->nfc, a);
 		if (ng > FATE_MAX_POLYS)
 			P->nfc = 0;
@@ -843,6 +948,9 @@ weights(const pm_polyindex *pi, pm_vec3 x, pm_vec3 n,
 		P->convex = pm_poly_convex(sc->cv + P->v0, P->nv, P->N);
 		P->nfc = P->ndyn = 0;
 		P->adyn = 0;
+		P->lit = 0;
+		for (int j = 0; j < na && !P->lit; j++)
+			P->lit = facing(P, sc->psi[j], sc->c[j], nd) > 0;
 	}
 	if (sc->ng > 1) {
 		if (!pair_lists(sc, pi->convex, xo, nd, eps, &xf0, &nxf))

@@ -12,6 +12,7 @@
 #include "passes/direct.h"
 #include "estimators/edge.h"
 #include "base/rng.h"
+#include "scene/patch.h"
 
 #define RENDER_DOMAIN 0x52454e444552ull
 
@@ -45,14 +46,16 @@ typedef struct ctx {
 	float pixel_angle;  /* a pixel's width in radians at the image centre */
 	int light_samples;  /* o->light_samples, at least 1 */
 	pm_gather gather;   /* used if o->gather */
+	const uint32_t *patch;  /* each polygon's smooth patch (scene/patch.h) */
 } ctx;
 
 /* What a pixel's camera samples share. Its first-hit photon estimate,
- * reused by its later camera samples that land on the same polygon
- * (opts.estimate_once): the first sample's point is uniform over the
- * pixel's footprint on that polygon, so the pixel's expected value is
- * unchanged, provided that whether it is reused does not depend on that
- * point. Reuse pays where the estimate's support (2 info.size across)
+ * reused by its later camera samples that land on the same smooth patch
+ * (opts.estimate_once; a polygon, or the facets of one curved surface,
+ * scene/patch.h): the first sample's point is uniform over the pixel's
+ * footprint on that patch, so the pixel's expected value is unchanged,
+ * provided that whether it is reused does not depend on that point (the
+ * patches are fixed before any sample). Reuse pays where the estimate's support (2 info.size across)
  * covers at least the area of the pixel's footprint: the estimate then
  * barely varies within the pixel, while a support smaller than the
  * footprint (few photons per estimate, many per pass) would lose the
@@ -63,7 +66,8 @@ typedef struct ctx {
  * (wide support) and diluted bright ones (narrow support), and a caustic
  * read 10 % dark. */
 typedef struct pxcache {
-	int valid;            /* L and info hold poly's estimate, to reuse */
+	int valid;            /* L and info hold poly's estimate, to reuse
+	                         (poly and the others: patch numbers) */
 	uint32_t poly;
 	pm_vec3 L;
 	pm_estimate_info info;
@@ -85,8 +89,9 @@ first_estimate(const ctx *c, void *sc, const pm_hit *h, pm_vec3 n, pm_vec3 wo,
                const pm_material *m, pxcache *pc, pm_estimate_info *info)
 {
 	pm_vec3 L;
+	uint32_t key = c->patch ? c->patch[h->poly] : h->poly;
 
-	if (pc && pc->valid && pc->poly == h->poly) {
+	if (pc && pc->valid && pc->poly == key) {
 		*info = pc->info;
 		return pc->L;
 	}
@@ -101,19 +106,19 @@ first_estimate(const ctx *c, void *sc, const pm_hit *h, pm_vec3 n, pm_vec3 wo,
 			float w = h->t * c->pixel_angle;
 			pc->rec = 1;
 			pc->rec_ok = w * w / (cosv > 0.05f ? cosv : 0.05f) <= 4.0f * info->size * info->size;
-			pc->rec_poly = h->poly;
+			pc->rec_poly = key;
 			/* No word from the previous pixel on this polygon: this
 			 * estimate decides for the next one here, which is
 			 * reused, and is itself used once. */
-			if (!(pc->allow && pc->allow_poly == h->poly)) {
+			if (!(pc->allow && pc->allow_poly == key)) {
 				pc->allow = pc->rec_ok;
-				pc->allow_poly = h->poly;
+				pc->allow_poly = key;
 				pc->valid = 0;
 				return L;
 			}
 		}
-		pc->valid = pc->allow && pc->allow_poly == h->poly;
-		pc->poly = h->poly;
+		pc->valid = pc->allow && pc->allow_poly == key;
+		pc->poly = key;
 		pc->L = L;
 		pc->info = *info;
 	}
@@ -230,7 +235,7 @@ pm_render(const pm_frame *f, const pm_photons *map, const pm_render_opts *o,
 	ctx c = {s, f->accel, &f->lights, o, est,
 	         {s, f->accel, map, f->pi, o->k, o->classical_norm, o->shrink},
 	         {s, f->accel, &f->lights}, 0.0f,
-	         o->light_samples > 1 ? o->light_samples : 1, {0}};
+	         o->light_samples > 1 ? o->light_samples : 1, {0}, NULL};
 	pm_camera cam;
 	int W, H, fail = 0;
 	size_t npx;
@@ -263,6 +268,12 @@ pm_render(const pm_frame *f, const pm_photons *map, const pm_render_opts *o,
 		return 0;
 	}
 
+	uint32_t *patch = NULL;
+	if (o->estimate_once && pm_scene_patches(s, &patch, err) != 0) {
+		pm_image_free(img);
+		return -1;
+	}
+	c.patch = patch;
 	int rows_done = 0;
 	#pragma omp parallel reduction(|:fail)
 	{
@@ -331,6 +342,7 @@ pm_render(const pm_frame *f, const pm_photons *map, const pm_render_opts *o,
 		if (sc)
 			est->scratch_free(sc);
 	}
+	free(patch);
 	if (fail) {
 		pm_image_free(img);
 		return pm_seterr(err, "out of memory");

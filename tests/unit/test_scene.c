@@ -9,6 +9,7 @@
 #include <unistd.h>
 
 #include "check.h"
+#include "scene/patch.h"
 #include "scene/scene.h"
 
 static char dir[64];
@@ -310,6 +311,38 @@ TEST(nonplanar_face_split)
 	CHECK(s.npolys == 2 && s.ntris == 2);
 	for (uint32_t i = 0; i < s.npolys; i++)
 		CHECK(s.poly_start[i + 1] - s.poly_start[i] == 3 && s.poly_normal[i].z > 0.5f);
+	pm_scene_free(&s);
+}
+
+/* Smooth patches: a tessellated sphere is one, a box six; a soup (every
+ * face its own vertices) joins where its faces meet flat and splits where
+ * they fold at 90 degrees; two objects never share one. */
+TEST(smooth_patches)
+{
+	pm_scene s;
+	pm_error err = {""};
+	uint32_t *patch;
+	put("soup.obj", "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 0 0\nv 1 1 0\nv 0 1 0\n"
+	                "v 1 0 0\nv 1 0 -1\nv 1 1 -1\nf 1 2 3\nf 4 5 6\nf 7 8 9\n");
+	if (load(&s, "box white 0 0 0  1 1 1\nsphere white 3 0 0 1 subdiv 2\n"
+	             "mesh soup.obj white translate 5 0 0\n"
+	             "quad white 0 0 3  1 0 3  1 1 3  0 1 3\nquad white 1 0 3  2 0 3  2 1 3  1 1 3\n"))
+		return;
+	CHECK(s.nobjs == 5);
+	CHECK(pm_scene_patches(&s, &patch, &err) == 0);
+	const pm_object *box = &s.objs[0], *sph = &s.objs[1], *soup = &s.objs[2];
+	for (uint32_t i = box->first_poly; i < box->first_poly + box->npolys; i++)
+		CHECKF(patch[i] == i, "box face %u in patch %u", i, patch[i]);
+	for (uint32_t i = sph->first_poly; i < sph->first_poly + sph->npolys; i++)
+		CHECKF(patch[i] == sph->first_poly, "sphere facet %u in patch %u", i, patch[i]);
+	CHECK(sph->npolys > 16);
+	CHECK(soup->npolys == 3);
+	uint32_t f = soup->first_poly;
+	/* the two flat halves of the square: one patch; the folded face: its own */
+	CHECK(patch[f] == f && patch[f + 1] == f && patch[f + 2] == f + 2);
+	CHECK(patch[s.objs[3].first_poly] == s.objs[3].first_poly);
+	CHECK(patch[s.objs[4].first_poly] == s.objs[4].first_poly);
+	free(patch);
 	pm_scene_free(&s);
 }
 
@@ -656,6 +689,7 @@ main(void)
 	RUN(obj_degenerate_faces_dropped);
 	RUN(concave_polygon_ear_clipping);
 	RUN(nonplanar_face_split);
+	RUN(smooth_patches);
 	RUN(motion);
 	RUN(materials_strong_and_soft);
 	RUN(identity);
@@ -664,7 +698,7 @@ main(void)
 	RUN(example_cornell);
 	RUN(example_room);
 	static const char *const files[] = {"t.pms", "h.pms", "bad.pms", "cube.obj", "plane.obj",
-		"degen.obj", "ell.obj", "bent.obj", "junk.obj", "junk.xyz", "cube.off", "cube.ply"};
+		"degen.obj", "ell.obj", "soup.obj", "bent.obj", "junk.obj", "junk.xyz", "cube.off", "cube.ply"};
 	char path[300];
 	for (size_t i = 0; i < sizeof files / sizeof files[0]; i++) {
 		snprintf(path, sizeof path, "%s/%s", dir, files[i]);
