@@ -140,8 +140,11 @@ walk(const ctx *c, void *sc, pm_vec3 o, pm_vec3 d, int depth, pm_vec3 beta, pm_v
 		const pm_guide *g = NULL;
 		int ends, nl;
 
-		if (!pm_accel_hit(c->a, o, d, 0.0f, FLT_MAX, &h))
+		if (!pm_accel_hit(c->a, o, d, 0.0f, FLT_MAX, &h)) {
+			pm_vec3 *sky = depth == 0 ? &out->direct : bucket;
+			*sky = pm_add(*sky, pm_mul(beta, pm_direct_escaped(&c->dl, d, bpdf, delta, nlprev)));
 			return;
+		}
 		m = &c->s->mats[c->s->objs[h.obj].material];
 		n = pm_dot(h.ng, wo) >= 0 ? h.ng : pm_neg(h.ng);
 		if (depth == 0)
@@ -171,11 +174,8 @@ walk(const ctx *c, void *sc, pm_vec3 o, pm_vec3 d, int depth, pm_vec3 beta, pm_v
 		if (ends) {
 			pm_estimate_info info;
 			pm_vec3 L;
-			pm_hit lh;
 			/* The BSDF-sampled half of the direct light. */
-			if (bs.pdf > 0 && pm_direct_bsdf_hit(&c->dl, h.p, h.ng, bs.wi, &lh))
-				*here = pm_add(*here, pm_mul(pm_mul(beta, bs.weight),
-				                             pm_direct_emitted(&c->dl, &lh, h.p, bs.wi, bs.pdf, 0, nl)));
+			*here = pm_add(*here, pm_mul(beta, pm_direct_bsdf_light(&c->dl, h.p, h.ng, &bs, nl)));
 			/* Gathering draws its own rays: one gather per camera sample. */
 			L = c->o->gather ? pm_gather_radiance(&c->gather, sc, r, h.p, h.ng, n, wo, m, &info)
 			                 : first_estimate(c, sc, &h, n, wo, m,

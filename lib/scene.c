@@ -13,6 +13,7 @@
 #include <strings.h>
 #include <sys/stat.h>
 
+#include "imagefile.h"
 #include "maxpixels.h"
 #include "mesh.h"
 #include "photonfile.h"
@@ -399,6 +400,27 @@ typedef struct {
 	int subdiv;   /* -1: not allowed */
 } tail;
 
+/* The rotation by d[3] degrees about the axis d[0..2] into a (which is
+ * zeroed, translation included). */
+static int
+rotation(parser *p, const double d[4], double a[3][4])
+{
+	double len = sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+	if (!(len > 0))
+		return perr(p, "%s: rotate axis must not be zero", p->stmt);
+	/* Rodrigues' rotation formula: right-handed about the axis. */
+	double k[3] = {d[0] / len, d[1] / len, d[2] / len};
+	double th = d[3] * PM_PI / 180, c = cos(th), sn = sin(th);
+	memset(a, 0, 3 * sizeof a[0]);
+	for (int i = 0; i < 3; i++)
+		for (int j = 0; j < 3; j++)
+			a[i][j] = (i == j ? c : 0) + (1 - c) * k[i] * k[j];
+	a[0][1] -= sn * k[2]; a[0][2] += sn * k[1];
+	a[1][0] += sn * k[2]; a[1][2] -= sn * k[0];
+	a[2][0] -= sn * k[1]; a[2][1] += sn * k[0];
+	return 0;
+}
+
 static int
 parse_tail(parser *p, tail *t)
 {
@@ -426,18 +448,8 @@ parse_tail(parser *p, tail *t)
 			p->pos++;
 			if (numbers(p, 4, d, "'rotate'"))
 				return -1;
-			double len = sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
-			if (!(len > 0))
-				return perr(p, "%s: rotate axis must not be zero", p->stmt);
-			/* Rodrigues' rotation formula: right-handed about the axis. */
-			double k[3] = {d[0] / len, d[1] / len, d[2] / len};
-			double th = d[3] * PM_PI / 180, c = cos(th), sn = sin(th);
-			for (int i = 0; i < 3; i++)
-				for (int j = 0; j < 3; j++)
-					a[i][j] = (i == j ? c : 0) + (1 - c) * k[i] * k[j];
-			a[0][1] -= sn * k[2]; a[0][2] += sn * k[1];
-			a[1][0] += sn * k[2]; a[1][2] -= sn * k[0];
-			a[2][0] -= sn * k[1]; a[2][1] += sn * k[0];
+			if (rotation(p, d, a))
+				return -1;
 			pm_xform_then(&t->xf, a);
 		} else if (!strcmp(w, "translate")) {
 			p->pos++;
@@ -617,6 +629,248 @@ st_mesh(parser *p)
 	return r;
 }
 
+static int
+st_disk(parser *p)
+{
+	int mat;
+	double c[7];
+	tail t = {.inward = -1, .subdiv = -1};
+	if (material_arg(p, &mat) || numbers(p, 7, c, "the material"))
+		return -1;
+	if (!(c[6] > 0))
+		return perr(p, "disk: radius must be > 0, got %g", c[6]);
+	pm_dvec3 n = pm_dv3(c[3], c[4], c[5]);
+	if (!(pm_dlen(n) > 0))
+		return perr(p, "disk: the normal must not be zero");
+	if (parse_tail(p, &t))
+		return -1;
+	pm_shape sh;
+	if (pm_shape_disk(&sh, pm_dv3(c[0], c[1], c[2]), n, c[6]))
+		return perr(p, "out of memory");
+	int r = add_object(p, mat, &sh, &t, 0, 0);
+	pm_shape_free(&sh);
+	return r;
+}
+
+/* A light's colour after word w: each channel >= 0, not all 0. */
+static int
+light_colour(parser *p, pm_vec3 *v, const char *w)
+{
+	char after[24];
+	snprintf(after, sizeof after, "'%s'", w);
+	if (vec3(p, v, after))
+		return -1;
+	if (!nonneg(*v) || !(pm_maxc(*v) > 0))
+		return perr(p, "%s: %s must be >= 0 and not all zero", p->stmt, w);
+	return 0;
+}
+
+/* The index of w in words (n of them), after checking it was not seen. */
+static int
+light_word(parser *p, const char *const *words, int n, unsigned *seen)
+{
+	const char *w = peek(p);
+	int k;
+	for (k = 0; k < n && strcmp(w, words[k]); k++)
+		;
+	if (k == n) {
+		char list[200] = "";
+		for (int i = 0; i < n; i++)
+			snprintf(list + strlen(list), sizeof list - strlen(list), "%s%s",
+			         i == 0 ? "" : i == n - 1 ? " or " : ", ", words[i]);
+		return perr(p, "%s: unexpected '%s' (expected %s)", p->stmt, w, list);
+	}
+	if (*seen >> k & 1)
+		return perr(p, "%s: '%s' given twice", p->stmt, w);
+	*seen |= 1u << k;
+	p->pos++;
+	return k;
+}
+
+static int
+st_spotlight(parser *p)
+{
+	enum { W_TO, W_INTENSITY, W_CONE, W_FALLOFF, W_MOVE, NW };
+	static const char *const words[NW] = {"to", "intensity", "cone", "falloff", "move"};
+	pm_pointlight l;
+	pm_vec3 to = {0};
+	unsigned seen = 0;
+	double d[2];
+	memset(&l, 0, sizeof l);
+	l.kind = PM_LIGHT_SPOT;
+	if (vec3(p, &l.pos, "'spotlight'"))
+		return -1;
+	while (peek(p)) {
+		int k = light_word(p, words, NW, &seen);
+		const char *f;
+		switch (k) {
+		case W_TO:
+			if (vec3(p, &to, "'to'"))
+				return -1;
+			break;
+		case W_INTENSITY:
+			if (light_colour(p, &l.power, "intensity"))
+				return -1;
+			break;
+		case W_CONE:
+			if (numbers(p, 2, d, "'cone'"))
+				return -1;
+			if (!(d[0] > 0 && d[0] <= 90 && d[1] >= 0 && d[1] <= d[0]))
+				return perr(p, "spotlight: cone needs 0 < OUTER <= 90 and 0 <= INNER <= OUTER degrees, got %g %g",
+				            d[0], d[1]);
+			l.outer = (float)d[0];
+			l.inner = (float)d[1];
+			break;
+		case W_FALLOFF:
+			f = peek(p);
+			if (f && !strcmp(f, "smooth"))
+				l.falloff = PM_FALLOFF_SMOOTH;
+			else if (f && !strcmp(f, "linear"))
+				l.falloff = PM_FALLOFF_LINEAR;
+			else
+				return perr(p, "spotlight: falloff must be smooth or linear");
+			p->pos++;
+			break;
+		case W_MOVE:
+			if (vec3(p, &l.motion, "'move'"))
+				return -1;
+			break;
+		default:
+			return -1;
+		}
+	}
+	for (int k = 0; k < W_FALLOFF; k++)
+		if (!(seen >> k & 1))
+			return perr(p, "spotlight: missing '%s'", words[k]);
+	l.dir = pm_sub(to, l.pos);
+	if (!(pm_len(l.dir) > 0))
+		return perr(p, "spotlight: 'to' is the light's own position (no direction)");
+	l.dir = pm_norm(l.dir);
+	pm_error e;
+	if (pm_build_light(p->b, &l, &e))
+		return berr(p, &e);
+	return 0;
+}
+
+static int
+st_distantlight(parser *p)
+{
+	enum { W_DIR, W_IRRADIANCE, NW };
+	static const char *const words[NW] = {"dir", "irradiance"};
+	pm_pointlight l;
+	unsigned seen = 0;
+	memset(&l, 0, sizeof l);
+	l.kind = PM_LIGHT_DISTANT;
+	while (peek(p)) {
+		int k = light_word(p, words, NW, &seen);
+		if (k < 0)
+			return -1;
+		if (k == W_DIR ? vec3(p, &l.dir, "'dir'") : light_colour(p, &l.power, "irradiance"))
+			return -1;
+		if (k == W_DIR && !(pm_len(l.dir) > 0))
+			return perr(p, "distantlight: dir must not be zero");
+	}
+	for (int k = 0; k < NW; k++)
+		if (!(seen >> k & 1))
+			return perr(p, "distantlight: missing '%s'", words[k]);
+	l.dir = pm_norm(l.dir);
+	pm_error e;
+	if (pm_build_light(p->b, &l, &e))
+		return berr(p, &e);
+	return 0;
+}
+
+/* The environment map of envlight: read, scaled, and checked. */
+static int
+env_image(parser *p, pm_pointlight *l, const char *file, float scale)
+{
+	size_t len = strlen(p->dir) + strlen(file) + 1;
+	char *path = malloc(len);
+	pm_rgbimage im;
+	if (!path)
+		return perr(p, "out of memory");
+	snprintf(path, len, "%s%s", file[0] == '/' ? "" : p->dir, file);
+	if (pm_rgbimage_read(path, &im, p->err)) {
+		free(path);
+		return pm_preferr(p->err, "%s:%d", p->path, p->line);
+	}
+	for (size_t i = 0; i < (size_t)im.w * im.h * 3; i++) {
+		float v = im.px[i] * scale;
+		if (!(v >= 0 && v <= 3e38f)) {
+			int r = perr(p, "envlight: '%s': texel (%zu, %zu) is %g, not a finite radiance >= 0",
+			             path, i / 3 % (size_t)im.w, i / 3 / (size_t)im.w, (double)v);
+			free(path);
+			pm_rgbimage_free(&im);
+			return r;
+		}
+		im.px[i] = v;
+	}
+	free(path);
+	l->env = im.px;
+	l->env_w = im.w;
+	l->env_h = im.h;
+	return 0;
+}
+
+static int
+st_envlight(parser *p)
+{
+	pm_pointlight l;
+	const char *w = peek(p), *file = NULL;
+	double scale = 1, d[4], a[3][4];
+	int have_scale = 0;
+	memset(&l, 0, sizeof l);
+	l.kind = PM_LIGHT_ENV;
+	for (int i = 0; i < 3; i++)
+		l.rot[i][i] = 1;
+	for (int i = 0; i < p->s->nlights; i++)
+		if (p->s->lights[i].kind == PM_LIGHT_ENV)
+			return perr(p, "envlight: a second environment light (at most one)");
+	if (w && !strcmp(w, "radiance")) {
+		p->pos++;
+		if (light_colour(p, &l.power, "radiance"))
+			return -1;
+		if (peek(p))
+			return perr(p, "envlight: unexpected '%s'", peek(p));
+	} else if (w && !strcmp(w, "image")) {
+		p->pos++;
+		if (!(file = peek(p)))
+			return perr(p, "envlight: expected a file name after 'image'");
+		p->pos++;
+		while ((w = peek(p))) {
+			p->pos++;
+			if (!strcmp(w, "scale") && !have_scale++) {
+				if (numbers(p, 1, &scale, "'scale'"))
+					return -1;
+				if (!(scale > 0))
+					return perr(p, "envlight: scale must be > 0, got %g", scale);
+			} else if (!strcmp(w, "rotate")) {
+				if (numbers(p, 4, d, "'rotate'") || rotation(p, d, a))
+					return -1;
+				float r[3][3];
+				for (int i = 0; i < 3; i++)
+					for (int j = 0; j < 3; j++)
+						r[i][j] = (float)(a[i][0] * l.rot[0][j] + a[i][1] * l.rot[1][j]
+						                  + a[i][2] * l.rot[2][j]);
+				memcpy(l.rot, r, sizeof r);
+			} else {
+				return perr(p, "envlight: unexpected '%s' (expected scale or rotate)", w);
+			}
+		}
+		l.power = pm_v3(1, 1, 1);
+		if (env_image(p, &l, file, (float)scale))
+			return -1;
+	} else {
+		return perr(p, "envlight: expected 'radiance' or 'image'");
+	}
+	pm_error e;
+	if (pm_build_light(p->b, &l, &e)) {
+		free(l.env);
+		return berr(p, &e);
+	}
+	return 0;
+}
+
 /* Splits line (NUL-terminated, comment already cut) into p->tok. */
 static void
 tokenize(parser *p, char *line)
@@ -644,6 +898,8 @@ statement(parser *p)
 		{"camera", st_camera}, {"glossy_threshold", st_threshold},
 		{"material", st_material}, {"mesh", st_mesh}, {"quad", st_quad}, {"triangle", st_triangle},
 		{"box", st_box}, {"sphere", st_sphere}, {"pointlight", st_pointlight},
+		{"disk", st_disk}, {"spotlight", st_spotlight}, {"distantlight", st_distantlight},
+		{"envlight", st_envlight},
 	};
 	const char *w = p->tok[0];
 	for (size_t i = 0; i < sizeof st / sizeof st[0]; i++)
@@ -721,7 +977,8 @@ parse(parser *p, char *data, size_t len)
 	for (int i = 0; i < s->nobjs && !lit; i++)
 		lit = pm_maxc(s->mats[s->objs[i].material].emit) > 0;
 	if (!lit)
-		return perr(p, "no light (add a pointlight or an object with an emitting material)");
+		return perr(p, "no light (add a pointlight, spotlight, distantlight, envlight "
+		            "or an object with an emitting material)");
 	for (int i = 0; i < s->nmats; i++) {
 		pm_material *m = &s->mats[i];
 		m->strong = m->kind == PM_MAT_MIRROR || m->kind == PM_MAT_GLASS
@@ -790,6 +1047,8 @@ pm_scene_free(pm_scene *s)
 	free(s->path);
 	free(s->mats);
 	free(s->objs);
+	for (int i = 0; i < s->nlights; i++)
+		free(s->lights[i].env);
 	free(s->lights);
 	free(s->verts);
 	free(s->poly_start);

@@ -41,10 +41,27 @@ typedef struct pm_object {
 	int line;           /* scene line that made it, for messages */
 } pm_object;
 
+/* The lights that are not surfaces (formats/scene.md): point, spot,
+ * distant and environment lights. */
+enum pm_light_kind { PM_LIGHT_POINT, PM_LIGHT_SPOT, PM_LIGHT_DISTANT, PM_LIGHT_ENV };
+enum pm_spot_falloff { PM_FALLOFF_SMOOTH, PM_FALLOFF_LINEAR };
+
 typedef struct pm_pointlight {
-	pm_vec3 pos;        /* at t = 0 */
-	pm_vec3 power;      /* W per channel, emitted isotropically */
+	int kind;           /* enum pm_light_kind */
+	pm_vec3 pos;        /* at t = 0 (point, spot) */
+	/* point: power (W); spot: intensity on the axis (W/sr); distant:
+	 * irradiance (W/m^2); environment: radiance (W/m^2/sr), constant or
+	 * the image's scale (per channel). */
+	pm_vec3 power;
 	pm_vec3 motion;
+	pm_vec3 dir;        /* spot: unit axis; distant: unit direction of travel */
+	float outer, inner; /* spot: half-angles of the cone, degrees */
+	int falloff;        /* spot: enum pm_spot_falloff */
+	/* environment image: w x h RGB texels, row 0 the top (+y); rot turns
+	 * the map's directions into the world's. NULL for a constant sky. */
+	float *env;
+	int env_w, env_h;
+	float rot[3][3];
 } pm_pointlight;
 
 typedef struct pm_camera_desc {
@@ -97,7 +114,7 @@ void pm_scene_free(pm_scene *s);
  * t * motion of the vertex's object. out has s->nverts entries. */
 void pm_scene_verts_at(const pm_scene *s, float t, pm_vec3 *out);
 
-/* Point light position at time t. */
+/* Position of light i (point or spot) at time t. */
 pm_vec3 pm_scene_light_at(const pm_scene *s, int i, float t);
 
 /* 1 if photons are stored and radiance estimated at this material (diffuse

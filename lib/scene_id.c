@@ -55,8 +55,22 @@ light_identity(const pm_scene *s)
 		h = put_u32(put_u32(h, o->npolys), o->nverts);
 	}
 	h = put_u32(h, (uint32_t)s->nlights);
-	for (int i = 0; i < s->nlights; i++)
-		h = put_vec(put_vec(put_vec(h, s->lights[i].pos), s->lights[i].power), s->lights[i].motion);
+	for (int i = 0; i < s->nlights; i++) {
+		const pm_pointlight *l = &s->lights[i];
+		h = put_vec(put_vec(put_vec(h, l->pos), l->power), l->motion);
+		if (l->kind == PM_LIGHT_POINT)
+			continue;
+		h = put_u32(put_vec(put_u32(h, (uint32_t)l->kind), l->dir), (uint32_t)l->falloff);
+		h = put_f32(put_f32(h, l->outer), l->inner);
+		if (!l->env)
+			continue;
+		h = put_u32(put_u32(h, (uint32_t)l->env_w), (uint32_t)l->env_h);
+		for (int r = 0; r < 3; r++)
+			for (int c = 0; c < 3; c++)
+				h = put_f32(h, l->rot[r][c]);
+		for (size_t k = 0; k < (size_t)l->env_w * l->env_h * 3; k++)
+			h = put_f32(h, l->env[k]);
+	}
 	h = put_u32(h, s->nverts);
 	for (uint32_t i = 0; i < s->nverts; i++)
 		h = put_vec(h, s->verts[i]);
