@@ -2,8 +2,9 @@
 include config.mk
 
 B        ?= build
-LIB_C    := $(wildcard lib/*.c)
-LIB_CXX  := $(wildcard lib/*.cpp)
+LIB_C    := $(wildcard lib/*/*.c)
+LIB_CXX  := $(wildcard lib/*/*.cpp)
+LIB_H    := $(wildcard lib/*/*.h)
 LIB_OBJ  := $(LIB_C:%.c=$(B)/%.o) $(LIB_CXX:%.cpp=$(B)/%.o)
 TOOL_SRC := $(wildcard tools/pm-*.c)
 TOOLS    := $(TOOL_SRC:tools/%.c=$(B)/bin/%)
@@ -13,11 +14,11 @@ UNITS    := $(UNIT_SRC:tests/unit/%.c=$(B)/tests/%)
 
 all: $(TOOLS)
 
-$(B)/lib/%.o: lib/%.c $(wildcard lib/*.h) config.mk
+$(B)/lib/%.o: lib/%.c $(LIB_H) config.mk
 	@mkdir -p $(@D)
 	$(CC) $(CFLAGS) $(PKG_CFLAGS) -c $< -o $@
 
-$(B)/lib/%.o: lib/%.cpp $(wildcard lib/*.h) config.mk
+$(B)/lib/%.o: lib/%.cpp $(LIB_H) config.mk
 	@mkdir -p $(@D)
 	$(CXX) $(CXXFLAGS) -c $< -o $@
 
@@ -25,7 +26,7 @@ $(B)/libpm.a: $(LIB_OBJ)
 	@rm -f $@
 	$(AR) rcs $@ $^
 
-$(B)/tools/%.o: tools/%.c tools/util.h tools/bar.h tools/options.h $(wildcard lib/*.h) config.mk
+$(B)/tools/%.o: tools/%.c tools/util.h tools/bar.h tools/options.h $(LIB_H) config.mk
 	@mkdir -p $(@D)
 	$(CC) $(CFLAGS) $(PKG_CFLAGS) -Itools -c $< -o $@
 
@@ -80,7 +81,7 @@ $(B)/tests/tools/%: tests/tools/%.c $(B)/libpm.a
 FUZZ_SRC     := $(wildcard tests/fuzz/fuzz_*.c)
 FUZZ_TARGETS := $(FUZZ_SRC:tests/fuzz/fuzz_%.c=%)
 all-tests: $(FUZZ_TARGETS:%=$(B)/fuzz/replay-%)
-$(B)/fuzz/%.o: tests/fuzz/%.c tests/fuzz/fuzz.h $(wildcard lib/*.h) config.mk
+$(B)/fuzz/%.o: tests/fuzz/%.c tests/fuzz/fuzz.h $(LIB_H) config.mk
 	@mkdir -p $(@D)
 	$(CC) $(CFLAGS) $(PKG_CFLAGS) -Itests/fuzz -c $< -o $@
 $(B)/fuzz/replay-%: $(B)/fuzz/fuzz_%.o $(B)/fuzz/util.o $(B)/fuzz/replay.o $(B)/libpm.a
@@ -135,7 +136,7 @@ memcheck:
 BENCH_SRC  := $(wildcard bench/*.c)
 BENCH      := $(BENCH_SRC:bench/%.c=$(B)/bench/%)
 BENCH_XOBJ := $(patsubst bench/%.cpp,$(B)/bench/%.o,$(wildcard bench/*.cpp))
-$(B)/bench/%.o: bench/%.c bench/timing.h $(wildcard lib/*.h) config.mk
+$(B)/bench/%.o: bench/%.c bench/timing.h $(LIB_H) config.mk
 	@mkdir -p $(@D)
 	$(CC) $(CFLAGS) $(PKG_CFLAGS) -c $< -o $@
 $(B)/bench/%.o: bench/%.cpp config.mk

@@ -6,7 +6,7 @@
  * M2 (m2.R/G/B): s^2 = M2 / (n - 1). The reference's variance is its
  * stderr^2 when it is itself an average of passes (pm-average's stderr.*),
  * else 0; a constant reference (-c, for furnace scenes) is exact.
- * RMSE and relMSE are pm-diff's (lib/compare.h): relMSE per channel is
+ * RMSE and relMSE are pm-diff's (lib/passes/compare.h): relMSE per channel is
  * (a-b)^2 / (b^2 + 0.01); the variances are scaled the same way.
  *
  * Prints one tab-separated line, no header:
@@ -25,9 +25,9 @@
 #include <string.h>
 #include <unistd.h>
 
-#include "average.h"
-#include "compare.h"
-#include "image.h"
+#include "passes/average.h"
+#include "passes/compare.h"
+#include "formats/image.h"
 
 static void
 die(const char *what, const char *msg)

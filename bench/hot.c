@@ -22,17 +22,17 @@
 #include <time.h>
 #include <unistd.h>
 
-#include "accel.h"
-#include "bsdf.h"
-#include "camera.h"
-#include "compensate.h"
-#include "estimate.h"
-#include "frame.h"
-#include "kdtree.h"
-#include "light.h"
-#include "rng.h"
-#include "scene.h"
-#include "shoot.h"
+#include "scene/accel.h"
+#include "optics/bsdf.h"
+#include "scene/camera.h"
+#include "estimators/compensate.h"
+#include "estimators/estimate.h"
+#include "optics/frame.h"
+#include "formats/kdtree.h"
+#include "optics/light.h"
+#include "base/rng.h"
+#include "scene/scene.h"
+#include "passes/shoot.h"
 #include "timing.h"
 
 /* Every pm_accel_hit call from the library goes through here (-Wl,--wrap). */

@@ -16,8 +16,8 @@
 
 #include <omp.h>
 
-#include "kdtree.h"
-#include "rng.h"
+#include "formats/kdtree.h"
+#include "base/rng.h"
 #include "timing.h"
 
 void *nano_build(const float *xyz, size_t n, size_t stride, int leaf);

@@ -9,7 +9,7 @@
 #include <string.h>
 
 #include "util.h"
-#include "version.h"
+#include "base/version.h"
 
 enum { KEY_VERSION = OPT_LONG - 1, MAXOPT = 48 };
 

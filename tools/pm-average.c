@@ -1,17 +1,17 @@
 /* pm-average — averages pass images (or earlier averages) weighted by their
  * pass counts, keeping per-pixel M2 so averages of averages are exact and
- * the spread gives a standard error (lib/average.h, formats/image.md).
+ * the spread gives a standard error (lib/passes/average.h, formats/image.md).
  * Reads one input at a time: memory is O(image), not O(inputs), but for
  * the inputs' pass ids (16 bytes a pass), checked for repeats once all are
- * read (lib/passid.h). */
+ * read (lib/formats/passid.h). */
 #include <inttypes.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
-#include "average.h"
-#include "image.h"
-#include "passid.h"
+#include "passes/average.h"
+#include "formats/image.h"
+#include "formats/passid.h"
 #include "bar.h"
 #include "options.h"
 #include "util.h"

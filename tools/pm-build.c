@@ -7,11 +7,11 @@
 #include <string.h>
 #include <unistd.h>
 
-#include "atomic.h"
-#include "density.h"
-#include "frame.h"
-#include "kdtree.h"
-#include "photonfile.h"
+#include "base/atomic.h"
+#include "estimators/density.h"
+#include "optics/frame.h"
+#include "formats/kdtree.h"
+#include "formats/photonfile.h"
 #include "options.h"
 #include "util.h"
 

@@ -1,12 +1,12 @@
 /* pm-diff — compares image A against reference B: RMSE, relMSE (as pbrt-v4's
  * imgtool), mean absolute and maximum error, means, over all pixels or those
- * a mask selects (lib/compare.h). Prints "key: value" lines. */
+ * a mask selects (lib/passes/compare.h). Prints "key: value" lines. */
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
-#include "compare.h"
-#include "image.h"
+#include "passes/compare.h"
+#include "formats/image.h"
 #include "options.h"
 #include "util.h"
 

@@ -8,10 +8,10 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "atomic.h"
-#include "image.h"
-#include "kdtree.h"
-#include "photonfile.h"
+#include "base/atomic.h"
+#include "formats/image.h"
+#include "formats/kdtree.h"
+#include "formats/photonfile.h"
 #include "options.h"
 #include "util.h"
 

@@ -5,12 +5,12 @@
 #include <string.h>
 #include <unistd.h>
 
-#include "atomic.h"
-#include "frame.h"
-#include "pass.h"
-#include "photonfile.h"
-#include "scene.h"
-#include "shoot.h"
+#include "base/atomic.h"
+#include "optics/frame.h"
+#include "base/pass.h"
+#include "formats/photonfile.h"
+#include "scene/scene.h"
+#include "passes/shoot.h"
 #include "bar.h"
 #include "options.h"
 #include "util.h"

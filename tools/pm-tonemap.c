@@ -1,6 +1,6 @@
 /* pm-tonemap — an 8-bit sRGB PNG preview of an EXR's beauty image or one of
  * its layers: an exposure in stops (given, or automatic from the
- * log-average luminance), then a tone curve (lib/tonemap.h). Several inputs
+ * log-average luminance), then a tone curve (lib/formats/tonemap.h). Several inputs
  * of one height are set side by side under one exposure, for comparisons
  * like the paper's figure 3. */
 #include <math.h>
@@ -8,10 +8,10 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "compare.h"
-#include "image.h"
-#include "pngout.h"
-#include "tonemap.h"
+#include "passes/compare.h"
+#include "formats/image.h"
+#include "formats/pngout.h"
+#include "formats/tonemap.h"
 #include "options.h"
 #include "util.h"
 

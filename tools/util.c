@@ -19,12 +19,12 @@
 #include <sys/syscall.h>
 #include <unistd.h>
 
-#include "atomic.h"
+#include "base/atomic.h"
 
 const char *argv0 = "pm";
 
 /* On SIGINT, SIGTERM or SIGHUP: removes the named temporary files this
- * process has open (lib/atomic.h: their names hold PM_TMP_MARK), then dies
+ * process has open (lib/base/atomic.h: their names hold PM_TMP_MARK), then dies
  * of the same signal. It finds them through /proc/self/fd with raw system
  * calls only, all async-signal-safe, so it needs no record of pm_out
  * objects. An O_TMPFILE output has no name and vanishes by itself. */

@@ -1,4 +1,4 @@
-# density.sh — pm-build --density (lib/density.h): fewer photons where the
+# density.sh — pm-build --density (lib/estimators/density.h): fewer photons where the
 # camera does not need them, the same total power (the records' power
 # encoding aside), the same map for any -j; recorded in the map's header and
 # the image; and on the furnace (exact radiance 2) the picture stays right.

@@ -1,7 +1,7 @@
 # interrupt.sh — nothing lost: programs killed (SIGINT, SIGTERM, SIGKILL)
 # while computing or while writing leave the previous output intact and no
 # temporary file behind, with O_TMPFILE and with the named-temporary
-# fallback (PM_ATOMIC_NAMED=1, lib/atomic.h) whose names the tools' signal
+# fallback (PM_ATOMIC_NAMED=1, lib/base/atomic.h) whose names the tools' signal
 # handler removes. SIGKILL cannot be caught: with the named fallback it may
 # leave a hidden ".NAME.pm-tmp-XXXXXX" (documented), so it is tested with
 # O_TMPFILE only.

@@ -3,7 +3,7 @@
 # far wall, a rug 5 mm above the floor and a box resting on the floor. The
 # paper's target area (eq. 4) would count the wall behind the picture, the
 # floor under the rug and under the box as well, and read low there; the
-# compensated estimate takes the hidden part out (lib/overlap.h).
+# compensated estimate takes the hidden part out (lib/estimators/overlap.h).
 . "$PM_TOP/tests/lib.sh"
 tools=$PM_BIN/../tests/tools
 cat >layers.pms <<'SCENE'

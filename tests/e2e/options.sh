@@ -15,8 +15,8 @@ quad white -1 2 -1  -1 2 1  1 2 1  1 2 -1
 pointlight 0 1.5 0 power 2 2 2
 SCENE
 
-version=$(sed -n 's/^#define PM_VERSION "\(.*\)"$/\1/p' "$PM_TOP/lib/version.h")
-check "lib/version.h defines PM_VERSION" test -n "$version"
+version=$(sed -n 's/^#define PM_VERSION "\(.*\)"$/\1/p' "$PM_TOP/lib/base/version.h")
+check "lib/base/version.h defines PM_VERSION" test -n "$version"
 for p in $progs; do
 	out=$($p --version 2>&1); rc=$?
 	check "$p --version exits 0" test $rc -eq 0

@@ -1,5 +1,5 @@
 /* fuzz_exr.c — fuzz target for the EXR reader (pm_image_read_exr in
- * lib/image.c), the path every image tool reads through. Whatever the
+ * lib/formats/image.c), the path every image tool reads through. Whatever the
  * bytes, it must return 0 or -1 with a one-line message; an image it
  * accepts must be writable and read back with the same size, channels and
  * bits. */
@@ -9,7 +9,7 @@
 #include <string.h>
 
 #include "fuzz.h"
-#include "image.h"
+#include "formats/image.h"
 
 static void
 require(int cond, const char *what)

@@ -1,5 +1,5 @@
 /* fuzz_mesh.c — fuzz target for mesh loading through OpenMesh (pm_mesh_read
- * in lib/mesh.cpp). The first byte picks the format (obj, off, ply, stl,
+ * in lib/scene/mesh.cpp). The first byte picks the format (obj, off, ply, stl,
  * om), the rest is the file. Whatever the bytes, the shim must return 0 or
  * -1 with a one-line message and never let a C++ exception out; an accepted
  * mesh must have indices in range and finite-or-not coordinates copied as
@@ -10,7 +10,7 @@
 #include <string.h>
 
 #include "fuzz.h"
-#include "mesh.h"
+#include "scene/mesh.h"
 
 static void
 require(int cond, const char *what)

@@ -1,5 +1,5 @@
 /* fuzz_photons.c — fuzz target for the photon file and photon map reader
- * (lib/photonfile.c, formats/photons.md). Whatever the bytes, the reader must
+ * (lib/formats/photonfile.c, formats/photons.md). Whatever the bytes, the reader must
  * return 0 or -1 with a message; a file it accepts must survive a write and
  * a second read unchanged (same header fields, same records). */
 #define _GNU_SOURCE
@@ -8,7 +8,7 @@
 #include <string.h>
 
 #include "fuzz.h"
-#include "photonfile.h"
+#include "formats/photonfile.h"
 
 static FILE *
 open_input(const uint8_t *data, size_t size)

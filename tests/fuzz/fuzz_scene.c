@@ -1,5 +1,5 @@
 /* fuzz_scene.c — fuzz target for the scene parser (pm_scene_load in
- * lib/scene.c, formats/scene.md). Whatever the bytes, it must return 0 or
+ * lib/scene/scene.c, formats/scene.md). Whatever the bytes, it must return 0 or
  * -1 with a one-line "FILE:LINE: message" (or a message naming the file);
  * an accepted scene must satisfy the invariants scene.h promises. Two small
  * meshes (cube.obj, tri.off) sit beside the scene so that mesh lines have
@@ -11,7 +11,7 @@
 #include <string.h>
 
 #include "fuzz.h"
-#include "scene.h"
+#include "scene/scene.h"
 
 static void
 require(int cond, const char *what)

@@ -24,8 +24,8 @@
 #include <string.h>
 #include <unistd.h>
 
-#include "image.h"
-#include "pngout.h"
+#include "formats/image.h"
+#include "formats/pngout.h"
 
 #define GAP 4
 

@@ -4,7 +4,7 @@
  * Usage: exrattr FILE.exr [KEY] */
 #include <stdio.h>
 
-#include "image.h"
+#include "formats/image.h"
 
 int
 main(int argc, char **argv)

@@ -8,8 +8,8 @@
 #include <stdlib.h>
 #include <time.h>
 
-#include "kdtree.h"
-#include "rng.h"
+#include "formats/kdtree.h"
+#include "base/rng.h"
 
 static double
 now(void)

@@ -14,7 +14,7 @@
 #include <string.h>
 #include <unistd.h>
 
-#include "image.h"
+#include "formats/image.h"
 
 static void
 fail(const char *msg)

@@ -12,9 +12,9 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "atomic.h"
-#include "photonfile.h"
-#include "rng.h"
+#include "base/atomic.h"
+#include "formats/photonfile.h"
+#include "base/rng.h"
 
 static const char usage[] =
 	"usage: mkphotons [-h] [-e EMITTED] [-H HASH] [-n N] [-o FILE] [-p AXIS=VALUE]... [-s SEED] [-t TIME]\n"

@@ -2,7 +2,7 @@
 #include <math.h>
 #include <string.h>
 
-#include "bsdf.h"
+#include "optics/bsdf.h"
 #include "check.h"
 
 static pm_material

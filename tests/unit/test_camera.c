@@ -1,7 +1,7 @@
 /* test_camera.c — the camera conventions of formats/scene.md. */
 #include <math.h>
 
-#include "camera.h"
+#include "scene/camera.h"
 #include "check.h"
 
 static pm_camera_desc

@@ -1,4 +1,4 @@
-/* test_clip.c — the area of a polygon inside a cube (lib/clip.c) against
+/* test_clip.c — the area of a polygon inside a cube (lib/estimators/clip.c) against
  * areas worked out by hand: through the centre, in and beside a face,
  * through an edge and a corner, a concave L and U, far from the origin,
  * degenerate input. */
@@ -6,7 +6,7 @@
 #include <stdlib.h>
 
 #include "check.h"
-#include "clip.h"
+#include "estimators/clip.h"
 
 #define NEAR(a, b, rel) (fabs((a) - (b)) <= (rel) * fmax(fabs(b), 1e-300))
 

@@ -1,5 +1,5 @@
-/* test_compensate.c — the compensated radiance estimate (lib/compensate.c,
- * lib/polyindex.c) on hand-built scenes and photon sets whose irradiance is
+/* test_compensate.c — the compensated radiance estimate (lib/estimators/compensate.c,
+ * lib/scene/polyindex.c) on hand-built scenes and photon sets whose irradiance is
  * known: parallel beams lighting planar rectangles without occlusion, so
  * each rectangle's irradiance is (photons on it) * flux / area, and a
  * Lambertian surface's radiance is rho E / pi.
@@ -11,11 +11,11 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "bsdf.h"
+#include "optics/bsdf.h"
 #include "check.h"
-#include "compensate.h"
-#include "kdtree.h"
-#include "rng.h"
+#include "estimators/compensate.h"
+#include "formats/kdtree.h"
+#include "base/rng.h"
 
 #define RHO 0.7
 #define K 50

@@ -1,14 +1,14 @@
-/* test_estimators.c — the estimator table (lib/estimators.h): rows that
+/* test_estimators.c — the estimator table (lib/estimators/estimators.h): rows that
  * pm-render can dispatch through without knowing them, and the posed scene
- * (lib/frame.h) that holds the polygon index exactly when a row needs it. */
+ * (lib/optics/frame.h) that holds the polygon index exactly when a row needs it. */
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "check.h"
-#include "estimators.h"
-#include "frame.h"
-#include "photonview.h"
+#include "estimators/estimators.h"
+#include "optics/frame.h"
+#include "estimators/photonview.h"
 
 TEST(rows_are_whole_and_named_once)
 {

@@ -1,4 +1,4 @@
-/* test_guide.c — photon-map importance sampling (lib/guide.h): the
+/* test_guide.c — photon-map importance sampling (lib/estimators/guide.h): the
  * histogram's density integrates to one over the hemisphere and is what its
  * sampler draws from, and the mixture's weight f cos / p keeps the expected
  * value of BSDF sampling (for a diffuse surface, its albedo) whatever the
@@ -6,10 +6,10 @@
 #include <math.h>
 #include <stdlib.h>
 
-#include "bsdf.h"
+#include "optics/bsdf.h"
 #include "check.h"
-#include "guide.h"
-#include "kdtree.h"
+#include "estimators/guide.h"
+#include "formats/kdtree.h"
 
 /* A built map of photons around the origin on the plane y = 0, arriving
  * from two directions of the upper hemisphere with different powers. */

@@ -8,10 +8,10 @@
 
 #include <openexr.h>
 
-#include "average.h"
+#include "passes/average.h"
 #include "check.h"
-#include "compare.h"
-#include "image.h"
+#include "passes/compare.h"
+#include "formats/image.h"
 
 static int
 contains(const char *s, const char *sub)

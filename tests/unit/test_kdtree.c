@@ -8,8 +8,8 @@
 #include <string.h>
 
 #include "check.h"
-#include "kdtree.h"
-#include "rng.h"
+#include "formats/kdtree.h"
+#include "base/rng.h"
 
 enum { UNIFORM, PLANES, DUPLICATES, IDENTICAL, NKINDS };
 static const char *const kindname[NKINDS] = {"uniform", "planes", "duplicates", "identical"};

@@ -1,4 +1,4 @@
-/* test_ldseq.c — the scrambled Sobol' pairs of lib/ldseq.h: every prefix of
+/* test_ldseq.c — the scrambled Sobol' pairs of lib/base/ldseq.h: every prefix of
  * 2^m points is a (0, m, 2)-net (each elementary box of area 2^-m holds
  * exactly one point) for any seed and pair, which pseudo-random points are
  * not; different seeds and pairs give different points; a pass's block
@@ -7,7 +7,7 @@
 #include <string.h>
 
 #include "check.h"
-#include "ldseq.h"
+#include "base/ldseq.h"
 
 /* 1 if points [0, 2^m) of (seed, pair) put one point in every box of
  * 2^a x 2^(m-a) cells, for every a. */

@@ -4,9 +4,9 @@
 #include <math.h>
 
 #include "check.h"
-#include "clip.h"
-#include "overlap.h"
-#include "rng.h"
+#include "estimators/clip.h"
+#include "estimators/overlap.h"
+#include "base/rng.h"
 
 static double
 area(const pm_dvec3 *v, int n, pm_dvec3 N)

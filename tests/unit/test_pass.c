@@ -1,4 +1,4 @@
-/* test_pass.c — pass I of N (lib/pass.h): the documented seed formula
+/* test_pass.c — pass I of N (lib/base/pass.h): the documented seed formula
  * against splitmix64 written out here from Vigna's reference, times that
  * stratify [0, 1) one per stratum, distinct seeds, and "I/N" parsing. */
 #include <math.h>
@@ -6,7 +6,7 @@
 #include <string.h>
 
 #include "check.h"
-#include "pass.h"
+#include "base/pass.h"
 
 /* splitmix64 as in Vigna's splitmix64.c: state += golden gamma, then mix. */
 static uint64_t

@@ -1,4 +1,4 @@
-/* test_passid.c — pass ids (lib/passid.h): the documented text hashed by
+/* test_passid.c — pass ids (lib/formats/passid.h): the documented text hashed by
  * FNV-1a against its published reference values, every field of the
  * identity counting, pm.pass_ids parsing and formatting, and which repeat
  * pm_passids_dup reports. */
@@ -7,8 +7,8 @@
 #include <string.h>
 
 #include "check.h"
-#include "fnv.h"
-#include "passid.h"
+#include "base/fnv.h"
+#include "formats/passid.h"
 
 TEST(fnv1a_reference_values)
 {

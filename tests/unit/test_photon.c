@@ -9,8 +9,8 @@
 #include <unistd.h>
 
 #include "check.h"
-#include "photonfile.h"
-#include "rng.h"
+#include "formats/photonfile.h"
+#include "base/rng.h"
 
 static pm_vec3
 rand_dir(pm_rng *r)

@@ -6,7 +6,7 @@
 #include <string.h>
 
 #include "check.h"
-#include "pngout.h"
+#include "formats/pngout.h"
 
 TEST(srgb8_known_values)
 {

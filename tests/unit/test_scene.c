@@ -9,7 +9,7 @@
 #include <unistd.h>
 
 #include "check.h"
-#include "scene.h"
+#include "scene/scene.h"
 
 static char dir[64];
 

@@ -5,8 +5,8 @@
 #include <stdlib.h>
 
 #include "check.h"
-#include "pngout.h"
-#include "tonemap.h"
+#include "formats/pngout.h"
+#include "formats/tonemap.h"
 
 /* sRGB code of a display value in [0, 1], IEC 61966-2-1, written out here. */
 static int

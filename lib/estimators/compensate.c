@@ -1,0 +1,1054 @@
+/* compensate.c — the compensated radiance estimate (Hey & Purgathofer 2001,
+ * "Global Illumination with Photon Map Compensation", §3, eq. 1-4): photons
+ * in the L-infinity cube around x, the photon-surface polygons clipped into
+ * it, each photon's flux spread over its own target area A_p. The model that
+ * decides what counts as target area is in compensate.h.
+ *
+ * Cost: one k-nearest search; one pass over the polygons that meet the cube
+ * (typically 1-3), clipping each once; pairwise tests between those
+ * polygons to find which can hide which. Only polygons that something can
+ * hide get sample points, and only their samples cost work per photon. All
+ * geometry is double and relative to x. */
+#include "estimators/compensate.h"
+
+#include <float.h>
+#include <math.h>
+#include <stdlib.h>
+
+#include "optics/bsdf.h"
+#include "estimators/clip.h"
+#include "estimators/overlap.h"
+
+/* A polygon whose unit normal is this close to +-n is taken as lying in the
+ * plane of x (1 - cos of about 1.4 milliradians). */
+#define PARALLEL_EPS 1e-6
+#define MAX_K (1 << 24)
+/* Sample points per polygon that something can hide: GRID x GRID cells of
+ * its bounding rectangle, those inside it. */
+#define GRID 8
+/* Convex polygons up to this many vertices find their cells inside row by row. */
+#define ROW_MAX_VERTS 32
+/* Two planes at most this far from perpendicular (|N_a . N_b| >= LAYER_COS)
+ * are layers: one over the other, not walls meeting at an edge. */
+#define LAYER_COS 0.5
+/* x' = x + XOFF_REL h n: the point just off x's surface that looks. */
+#define XOFF_REL 1e-3
+/* Faces of x's own solid turned less than this from n (cos 30 degrees: the
+ * facets of a tessellated curve) are seen through it; those across a
+ * sharper convex edge are not: their light is their own. */
+#define SMOOTH_COS 0.866
+/* In a polygon's list of what its backward rays may meet: a solid that is
+ * no layer over it, which matters only when met from behind. */
+#define MATTER (1 << 30)
+/* More polygons than this in one cube (a finely tessellated sphere): the
+ * fates are not followed (every ray counts as open), which keeps the cost
+ * of such cubes bounded; what x' sees still is. */
+#define FATE_MAX_POLYS 96
+/* ... a polygon wholly in front of it. */
+#define FRONT (1 << 29)
+#define IDX(e) ((e) & (FRONT - 1))
+
+typedef struct cpoly {
+	uint32_t g;            /* scene polygon */
+	int obj, solid;
+	pm_dvec3 N, Ne;        /* unit normal; the side that counts (see .h) */
+	double d, de;          /* N . v and Ne . v on its plane, v relative to x */
+	double A;              /* area in the cube */
+	int v0, nv;            /* clipped vertices sc->cv[v0 ..], sc->uv[2 v0 ..] */
+	int ax;                /* axis N points most along (2-D inside test) */
+	int convex;
+	double nax;            /* |N| along it */
+	double lo[3], hi[3];   /* bounding box of the clipped polygon */
+	pm_dvec3 c;            /* ... its centre, and a radius about c */
+	double rad;
+	int xon;               /* x lies on it */
+	int xpar;              /* parallel to n */
+	int r0, nr;            /* polygons that may hide part of it from x' */
+	int f0, nf;            /* polygons a backward ray from it may meet ... */
+	int nfc;               /* ... the first nfc lying on its plane */
+	int s0, ns;            /* sample points kept: the ndyn first, then
+	                          those covered for every direction */
+	int ncell;             /* cells its area was shared among */
+	int unseen;            /* a solid's face turned away from x': not seen */
+	double aopen;          /* area seen from x', not covered by a polygon on its plane */
+	int ndyn;              /* samples whose fate depends on the direction */
+	double adyn;           /* ... their area seen from x' */
+} cpoly;
+
+struct pm_comp_scratch {
+	int k;
+	pm_nn *nn;
+	pm_vec3 *pos, *dir;    /* photons found */
+	double *w;             /* their weights */
+	double *d;             /* their L-infinity distances from x */
+	int *act;              /* photons used that arrive in front of n */
+	pm_dvec3 *psi;         /* ... their unit directions */
+	double *c;             /* ... Psi . n */
+	int *own;              /* ... the polygon each lies on */
+	int *fx;               /* ... the fate of x's backward ray along Psi */
+	/* Grown as needed; a failed allocation leaves the estimate at 0. */
+	cpoly *g;
+	int ng, gcap;
+	pm_dvec3 *cv;
+	int ncv, cvcap;
+	double *uv;            /* the clipped vertices in the plane across ax */
+	int uvcap;
+	int *bl;
+	int nbl, blcap;
+	pm_dvec3 *sp;          /* sample points */
+	pm_dvec3 *ov;          /* pm_overlap_area's scratch */
+	int ovcap;
+	int *sf;               /* a covered sample's fate, the same for every
+	                          direction (unused for dynamic ones) */
+	int nsp, spcap;
+	int oom;
+	pm_comp_stats last;
+};
+
+pm_comp_scratch *
+pm_comp_scratch_new(int k)
+{
+	pm_comp_scratch *sc;
+	size_t n = (size_t)k;
+
+	if (k < 1 || k > MAX_K)
+		return NULL;
+	sc = calloc(1, sizeof *sc);
+	if (!sc)
+		return NULL;
+	sc->k = k;
+	sc->nn = malloc(n * sizeof *sc->nn);
+	sc->pos = malloc(n * sizeof *sc->pos);
+	sc->dir = malloc(n * sizeof *sc->dir);
+	sc->w = malloc(n * sizeof *sc->w);
+	sc->d = malloc(n * sizeof *sc->d);
+	sc->act = malloc(n * sizeof *sc->act);
+	sc->psi = malloc(n * sizeof *sc->psi);
+	sc->c = malloc(n * sizeof *sc->c);
+	sc->own = malloc(n * sizeof *sc->own);
+	sc->fx = malloc(n * sizeof *sc->fx);
+	if (!sc->nn || !sc->pos || !sc->dir || !sc->w || !sc->d || !sc->act
+	    || !sc->psi || !sc->c || !sc->own || !sc->fx) {
+		pm_comp_scratch_free(sc);
+		return NULL;
+	}
+	return sc;
+}
+
+void
+pm_comp_scratch_free(pm_comp_scratch *sc)
+{
+	if (!sc)
+		return;
+	free(sc->nn);
+	free(sc->pos);
+	free(sc->dir);
+	free(sc->w);
+	free(sc->d);
+	free(sc->act);
+	free(sc->psi);
+	free(sc->c);
+	free(sc->own);
+	free(sc->fx);
+	free(sc->g);
+	free(sc->cv);
+	free(sc->uv);
+	free(sc->bl);
+	free(sc->sp);
+	free(sc->sf);
+	free(sc->ov);
+	free(sc);
+}
+
+const pm_comp_stats *
+pm_comp_last(const pm_comp_scratch *sc)
+{
+	return &sc->last;
+}
+
+/* Room for need more elements of size sz in *p (capacity *cap, used n). */
+static int
+grow(void **p, int *cap, int n, int need, size_t sz)
+{
+	int c = *cap;
+	void *q;
+
+	if (n + need <= c)
+		return 1;
+	while (c < n + need)
+		c = c ? 2 * c : 64;
+	q = realloc(*p, (size_t)c * sz);
+	if (!q)
+		return 0;
+	*p = q;
+	*cap = c;
+	return 1;
+}
+
+static int
+grow_samples(pm_comp_scratch *sc, int need)
+{
+	int cap = sc->spcap;
+
+	if (!grow((void **)&sc->sp, &cap, sc->nsp, need, sizeof *sc->sp))
+		return 0;
+	cap = sc->spcap;
+	if (!grow((void **)&sc->sf, &cap, sc->nsp, need, sizeof *sc->sf))
+		return 0;
+	sc->spcap = cap;
+	return 1;
+}
+
+/* fmax and fmin, NaN ignored as theirs do, but inlined (libm's are calls
+ * without -ffinite-math-only, and these sit in every inner loop). */
+static inline double dmax(double a, double b) { return a > b || b != b ? a : b; }
+static inline double dmin(double a, double b) { return a < b || b != b ? a : b; }
+
+static double
+comp(pm_dvec3 v, int a)
+{
+	return a == 0 ? v.x : a == 1 ? v.y : v.z;
+}
+
+/* Collects the polygons meeting the cube: clipped, with their areas. */
+typedef struct visit_ctx {
+	pm_comp_scratch *sc;
+	const pm_polyindex *pi;
+	pm_dvec3 x;
+	double h, tau;
+	int open;
+} visit_ctx;
+
+static void
+visit(void *vctx, uint32_t g)
+{
+	visit_ctx *q = vctx;
+	pm_comp_scratch *sc = q->sc;
+	const pm_scene *s = q->pi->s;
+	const pm_vec3 *verts = q->pi->verts;
+	double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
+	uint32_t n = s->poly_start[g + 1] - s->poly_start[g];
+	int cap = 2 * (int)n + 12, kept;
+	pm_clipper cl;
+	pm_dvec3 N;
+	double A, len;
+	cpoly *P;
+
+	if (sc->oom)
+		return;
+	if (!grow((void **)&sc->cv, &sc->cvcap, sc->ncv, cap, sizeof *sc->cv) ||
+	    !grow((void **)&sc->uv, &sc->uvcap, 2 * sc->ncv, 2 * cap, sizeof *sc->uv) ||
+	    !grow((void **)&sc->g, &sc->gcap, sc->ng, 1, sizeof *sc->g)) {
+		sc->oom = 1;
+		return;
+	}
+	for (uint32_t v = s->poly_start[g]; v < s->poly_start[g + 1]; v++) {
+		pm_dvec3 r = pm_dsub(pm_dfromf(verts[s->poly_vert[v]]), q->x);
+		double rc[3] = {r.x, r.y, r.z};
+		for (int a = 0; a < 3; a++) {
+			lo[a] = rc[a] < lo[a] ? rc[a] : lo[a];
+			hi[a] = rc[a] > hi[a] ? rc[a] : hi[a];
+		}
+	}
+	/* Open cube: a polygon lying in (or beyond) a face plane is where the
+	 * set-aside boundary photons are; it has no area inside. */
+	if (q->open)
+		for (int a = 0; a < 3; a++)
+			if (lo[a] >= q->h - 0.5 * q->tau || hi[a] <= -q->h + 0.5 * q->tau)
+				return;
+	pm_clip_begin(&cl, q->h);
+	pm_clip_bounds(&cl, lo, hi);
+	pm_clip_keep(&cl, sc->cv + sc->ncv, cap);
+	for (uint32_t v = s->poly_start[g]; v < s->poly_start[g + 1]; v++)
+		pm_clip_vertex(&cl, pm_dsub(pm_dfromf(verts[s->poly_vert[v]]), q->x));
+	N = pm_dfromf(s->poly_normal[g]);
+	len = pm_dlen(N);
+	if (!(len > 0))
+		return;
+	N = pm_dscale(N, 1 / len);
+	A = pm_clip_end(&cl, N);
+	kept = pm_clip_kept(&cl);
+	if (!(A > 0) || kept < 3)
+		return;
+	P = &sc->g[sc->ng++];
+	*P = (cpoly){0};
+	P->g = g;
+	P->obj = (int)s->poly_obj[g];
+	P->solid = s->objs[P->obj].solid;
+	P->N = N;
+	P->A = A;
+	P->v0 = sc->ncv;
+	P->nv = kept;
+	sc->ncv += kept;
+	P->d = pm_ddot(N, pm_clip_middle(&cl));
+	P->ax = fabs(N.x) > fabs(N.y) ? (fabs(N.x) > fabs(N.z) ? 0 : 2) : (fabs(N.y) > fabs(N.z) ? 1 : 2);
+	P->nax = fabs(comp(N, P->ax));
+	for (int a = 0; a < 3; a++) {
+		P->lo[a] = INFINITY;
+		P->hi[a] = -INFINITY;
+	}
+	for (int i = 0; i < kept; i++) {
+		pm_dvec3 v = sc->cv[P->v0 + i];
+		for (int a = 0; a < 3; a++) {
+			P->lo[a] = dmin(P->lo[a], comp(v, a));
+			P->hi[a] = dmax(P->hi[a], comp(v, a));
+		}
+		sc->uv[2 * (P->v0 + i)] = comp(v, (P->ax + 1) % 3);
+		sc->uv[2 * (P->v0 + i) + 1] = comp(v, (P->ax + 2) % 3);
+	}
+	P->c = pm_dscale(pm_dadd(pm_dv3(P->lo[0], P->lo[1], P->lo[2]), pm_dv3(P->hi[0], P->hi[1], P->hi[2])), 0.5);
+	P->rad = 0.5 * pm_dlen(pm_dv3(P->hi[0] - P->lo[0], P->hi[1] - P->lo[1], P->hi[2] - P->lo[2]));
+}
+
+/* 1 if point p (near P's plane) is inside P's clipped polygon; within tol
+ * of its boundary, edge_in. Crossing number in the coordinate plane P
+ * projects best to, where distances shrink by at most P->nax. */
+static int
+inside(const pm_comp_scratch *sc, const cpoly *P, pm_dvec3 p, double tol, int edge_in)
+{
+	const double *uv = sc->uv + 2 * P->v0;
+	int u = (P->ax + 1) % 3, w = (P->ax + 2) % 3, in = 0;
+	double pu = comp(p, u), pw = comp(p, w), tu = tol * P->nax, t2 = tu * tu;
+
+	if (p.x < P->lo[0] - tol || p.x > P->hi[0] + tol || p.y < P->lo[1] - tol ||
+	    p.y > P->hi[1] + tol || p.z < P->lo[2] - tol || p.z > P->hi[2] + tol)
+		return 0;
+	for (int i = 0, j = P->nv - 1; i < P->nv; j = i++) {
+		double iu = uv[2 * i], iw = uv[2 * i + 1], ju = uv[2 * j], jw = uv[2 * j + 1];
+		double eu = iu - ju, ew = iw - jw;
+		if ((iw > pw) != (jw > pw) && pu < eu * (pw - iw) / ew + iu)
+			in = !in;
+		/* Within tu of the edge only inside its box grown by tu. */
+		if (pu < dmin(iu, ju) - tu || pu > dmax(iu, ju) + tu ||
+		    pw < dmin(iw, jw) - tu || pw > dmax(iw, jw) + tu)
+			continue;
+		double ru = pu - ju, rw = pw - jw, ee = eu * eu + ew * ew;
+		double t = ee > 0 ? (ru * eu + rw * ew) / ee : 0;
+		t = t < 0 ? 0 : t > 1 ? 1 : t;
+		ru -= t * eu;
+		rw -= t * ew;
+		if (ru * ru + rw * rw <= t2)
+			return edge_in;
+	}
+	return in;
+}
+
+/* 1 if x' sees y: the segment between them crosses none of the polygons
+ * that may hide part of P (y on P). Crossings within eps of a polygon's edge
+ * count: a wall's edge is where it meets the floor, and the floor beyond
+ * runs under it. */
+static int
+seen(const pm_comp_scratch *sc, const cpoly *P, pm_dvec3 xo, pm_dvec3 y, double eps)
+{
+	for (int i = 0; i < P->nr; i++) {
+		const cpoly *B = &sc->g[sc->bl[P->r0 + i]];
+		double sx = pm_ddot(B->N, xo) - B->d, sy = pm_ddot(B->N, y) - B->d;
+		if (fabs(sx) <= eps || fabs(sy) <= eps || (sx > 0) == (sy > 0))
+			continue;
+		if (inside(sc, B, pm_dadd(xo, pm_dscale(pm_dsub(y, xo), sx / (sx - sy))), eps, 1))
+			return 0;
+	}
+	return 1;
+}
+
+/* The fate of the backward ray from y toward psi through the cube: -1 if it
+ * meets none of the polygons cand[0..nc-1] first but the front of a wall
+ * across an edge (or leaves the cube), else which object it meets first and
+ * from which side. A hit at distance 0 (a face resting on y's surface) counts; a hit
+ * within eps of the polygon's edge does not (the next polygon of a mesh). */
+static int
+fate(const pm_comp_scratch *sc, const int *cand, int nc, pm_dvec3 y, pm_dvec3 psi, double eps)
+{
+	double best = INFINITY;
+	int f = -1;
+
+	for (int i = 0; i < nc; i++) {
+		const cpoly *B = &sc->g[IDX(cand[i])];
+		double dn = pm_ddot(B->N, psi), gap = B->d - pm_ddot(B->N, y), t;
+		if (fabs(dn) < 1e-9)
+			continue;
+		t = gap / dn;
+		if (t < 0) {
+			if (fabs(gap) > eps)
+				continue;
+			t = 0;
+		}
+		if (t >= best || !inside(sc, B, pm_dadd(y, pm_dscale(psi, t)), eps, 0))
+			continue;
+		best = t;
+		/* The front of a wall across an edge is where light comes from,
+		 * as it is beyond the cube. */
+		f = (cand[i] & MATTER) && dn < 0 ? -1 : 2 * B->obj + (dn > 0);
+	}
+	return f;
+}
+
+/* 1 if a backward ray along psi from some point of P may meet B: the box
+ * of P's vertices moved along psi onto B's plane (a point that would move
+ * backwards stays put) meets B's box. */
+static int
+reach(const pm_comp_scratch *sc, const cpoly *P, const cpoly *B, pm_dvec3 psi, double eps)
+{
+	double dn = pm_ddot(B->N, psi), lo[3] = {INFINITY, INFINITY, INFINITY};
+	double hi[3] = {-INFINITY, -INFINITY, -INFINITY};
+	int any = 0;
+
+	if (fabs(dn) < 1e-9)
+		return 0;
+	for (int i = 0; i < P->nv; i++) {
+		pm_dvec3 v = sc->cv[P->v0 + i];
+		double gap = B->d - pm_ddot(B->N, v), t = gap / dn;
+		if (t < 0) {
+			if (fabs(gap) > eps)
+				t = 0;
+			else
+				any = 1;
+		} else
+			any = 1;
+		v = pm_dadd(v, pm_dscale(psi, t > 0 ? t : 0));
+		for (int a = 0; a < 3; a++) {
+			lo[a] = dmin(lo[a], comp(v, a));
+			hi[a] = dmax(hi[a], comp(v, a));
+		}
+	}
+	if (!any)
+		return 0;
+	for (int a = 0; a < 3; a++)
+		if (hi[a] < B->lo[a] - eps || lo[a] > B->hi[a] + eps)
+			return 0;
+	return 1;
+}
+
+/* Signed distances of Q's clipped vertices to the plane (M, m): the largest
+ * and the smallest. */
+static void
+span(const pm_comp_scratch *sc, const cpoly *Q, pm_dvec3 M, double m, double *lo, double *hi)
+{
+	double c = pm_ddot(M, Q->c) - m;
+
+	/* Far from the plane, the bounding sphere says enough. */
+	if (fabs(c) > Q->rad) {
+		*lo = c - Q->rad;
+		*hi = c + Q->rad;
+		return;
+	}
+	*lo = INFINITY;
+	*hi = -INFINITY;
+	for (int i = 0; i < Q->nv; i++) {
+		double s = pm_ddot(M, sc->cv[Q->v0 + i]) - m;
+		*lo = s < *lo ? s : *lo;
+		*hi = s > *hi ? s : *hi;
+	}
+}
+
+/* 0 if B lies outside the pyramid from x' over P, so that no segment from
+ * x' to P can cross it: behind P's plane, or beyond one of the planes
+ * through x' and an edge of P (P convex; otherwise 1). */
+static int
+between(const pm_comp_scratch *sc, const cpoly *P, const cpoly *B, pm_dvec3 xo, double eps)
+{
+	const pm_dvec3 *v = sc->cv + P->v0;
+	double sxo = pm_ddot(P->N, xo) - P->d, lo, hi;
+	pm_dvec3 c = pm_dv3(0, 0, 0);
+
+	span(sc, B, P->N, P->d, &lo, &hi);
+	if (sxo > 0 ? hi <= eps : lo >= -eps)
+		return 0;
+	for (int i = 0; i < P->nv; i++)
+		c = pm_dadd(c, v[i]);
+	c = pm_dscale(c, 1.0 / P->nv);
+	for (int i = 0, j = P->nv - 1; i < P->nv; j = i++) {
+		pm_dvec3 m = pm_dcross(pm_dsub(v[i], xo), pm_dsub(v[j], xo));
+		double ml = pm_dlen(m), sc0, out = 1;
+		if (!(ml > 0))
+			continue;
+		m = pm_dscale(m, 1 / ml);
+		sc0 = pm_ddot(m, pm_dsub(c, xo));
+		if (sc0 == 0)
+			return 1;
+		for (int k = 0; k < P->nv; k++)
+			if ((pm_ddot(m, pm_dsub(v[k], xo)) > eps) != (sc0 > 0) &&
+			    fabs(pm_ddot(m, pm_dsub(v[k], xo))) > eps)
+				return 1;   /* not convex as seen from x' */
+		for (int k = 0; k < B->nv && out; k++) {
+			double t = pm_ddot(m, pm_dsub(sc->cv[B->v0 + k], xo));
+			out = sc0 > 0 ? t < -eps : t > eps;
+		}
+		if (out)
+			return 0;
+	}
+	return 1;
+}
+
+/* A ray that meets the back of a solid has gone through its front first,
+ * unless it started inside: so where a list holds a solid met from behind,
+ * it holds the rest of that solid's polygons in the cube too (each again
+ * counting only from behind), and a front met first ends the ray there as
+ * open. The polygon the ray starts on is not among them (skip, or for x's
+ * list those x lies on): a ray leaving a face's front never meets that face,
+ * and in a solid of several parts (a chair's seat, legs and back) x lies
+ * behind the planes of other parts' faces while outside them all. Appends
+ * to sc->bl from f0; returns the new length. */
+static int
+close_matter(pm_comp_scratch *sc, int f0, int skip)
+{
+	int n = sc->nbl;
+
+	for (int b = 0; b < sc->ng; b++) {
+		int in = 0, solid = 0;
+		if (b == skip || (skip < 0 && sc->g[b].xon))
+			continue;
+		for (int i = f0; i < n && !in; i++) {
+			int e = sc->bl[i];
+			in = IDX(e) == b;
+			solid |= (e & MATTER) && sc->g[IDX(e)].obj == sc->g[b].obj;
+		}
+		if (solid && !in)
+			sc->bl[sc->nbl++] = b | MATTER;
+	}
+	return sc->nbl;
+}
+
+/* For each polygon: which others may hide part of it from x' (R list), and
+ * which a backward ray from it may meet so that its fate differs from the
+ * open one (F list): layers over it (|N_b . N| >= LAYER_COS) with some part
+ * in front of it or lying on it facing it; solids it lies partly behind.
+ * Then the same F list for x itself (index ng). */
+static int
+pair_lists(pm_comp_scratch *sc, const unsigned char *cvx, pm_dvec3 xo, pm_dvec3 n, double eps,
+           int *xf0, int *nxf)
+{
+	int ng = sc->ng;
+
+	sc->nbl = 0;
+	if (!grow((void **)&sc->bl, &sc->blcap, 0, 3 * ng * ng + 3 * ng + 1, sizeof *sc->bl))
+		return 0;
+	int xobj[4], nxobj = 0;
+
+	for (int b = 0; b < ng; b++)
+		if (sc->g[b].xon && nxobj < 4)
+			xobj[nxobj++] = sc->g[b].obj;
+	for (int a = 0; a < ng; a++) {
+		cpoly *P = &sc->g[a];
+		int own = nxobj == 4;
+		P->r0 = sc->nbl;
+		/* The back of a solid, seen from outside it, is hidden by the
+		 * solid itself, unless x lies on that solid (a face across a
+		 * convex edge). */
+		for (int b = 0; b < nxobj && !own; b++)
+			own = xobj[b] == P->obj && pm_ddot(P->N, n) >= SMOOTH_COS;
+		P->unseen = P->solid && !own && pm_ddot(P->N, xo) - P->d < -eps;
+		for (int b = 0; b < ng && !P->unseen; b++) {
+			const cpoly *B = &sc->g[b];
+			double sx, lo, hi;
+			/* One convex solid's faces never hide each other, and x
+			 * sees its own solid's nearly flat neighbours through it. */
+			if (b == a || (B->obj == P->obj && cvx[P->obj]) ||
+			    (B->xon && B->solid && B->obj == P->obj && own))
+				continue;
+			sx = pm_ddot(B->N, xo) - B->d;
+			if (fabs(sx) <= eps)
+				continue;
+			span(sc, P, B->N, B->d, &lo, &hi);
+			if ((sx > 0 ? lo < -eps : hi > eps) && between(sc, P, B, xo, eps))
+				sc->bl[sc->nbl++] = b;
+		}
+		P->nr = sc->nbl - P->r0;
+		P->f0 = sc->nbl;
+		for (int pass = 0; pass < 2 && ng <= FATE_MAX_POLYS; pass++) {
+			for (int b = 0; b < ng; b++) {
+				const cpoly *B = &sc->g[b];
+				double lo, hi, plo, phi;
+				int layer = fabs(pm_ddot(B->N, P->N)) >= LAYER_COS, cand = 0, on;
+				if (b == a)
+					continue;
+				span(sc, B, P->Ne, P->de, &lo, &hi);
+				on = layer && hi <= eps && lo >= -eps;
+				if (on != (pass == 0))
+					continue;
+				if (on)
+					/* On P's plane: resting on it facing it, or the
+					 * same surface twice (the lower number wins). */
+					cand = pm_ddot(B->Ne, P->Ne) < 0 || B->g < P->g;
+				else if (layer && hi > eps)
+					cand = 1;
+				else if (B->solid && hi > eps) {
+					span(sc, P, B->N, B->d, &plo, &phi);
+					cand = plo < -eps ? 2 : 0;
+				}
+				if (cand)
+					sc->bl[sc->nbl++] = (cand == 2 ? b | MATTER : b) |
+						(!on && lo >= -eps ? FRONT : 0);
+			}
+			if (pass == 0)
+				P->nfc = sc->nbl - P->f0;
+		}
+		if (ng <= FATE_MAX_POLYS)
+			close_matter(sc, P->f0 + P->nfc, a);
+		if (ng > FATE_MAX_POLYS)
+			P->nfc = 0;
+		P->nf = sc->nbl - P->f0;
+	}
+	*xf0 = sc->nbl;
+	for (int b = 0; b < ng && ng <= FATE_MAX_POLYS; b++) {
+		const cpoly *B = &sc->g[b];
+		double lo, hi;
+		if (B->xon)
+			continue;
+		span(sc, B, n, 0, &lo, &hi);
+		if (!(hi > eps))
+			continue;
+		if (fabs(pm_ddot(B->N, n)) >= LAYER_COS)
+			sc->bl[sc->nbl++] = b;
+		else if (B->solid && B->d > eps)
+			sc->bl[sc->nbl++] = b | MATTER;
+	}
+	if (ng <= FATE_MAX_POLYS)
+		close_matter(sc, *xf0, -1);
+	*nxf = sc->nbl - *xf0;
+	return 1;
+}
+
+/* Sample points of P: the centres of the G x G cells of its bounding
+ * rectangle that lie inside it (G up to GRID, fewer for a polygon that
+ * fills only a little of the cube), each carrying an equal share of its area;
+ * and which of them x' sees. */
+static int
+sample(pm_comp_scratch *sc, cpoly *P, pm_dvec3 xo, double h, double eps)
+{
+	pm_dvec3 t1, t2, base;
+	double lo1 = INFINITY, hi1 = -INFINITY, lo2 = INFINITY, hi2 = -INFINITY;
+	int kept = 0, G = (int)ceil(GRID * sqrt(P->A / (4 * h * h)));
+
+	G = G < 2 ? 2 : G > GRID ? GRID : G;
+	if (P->nr + P->nf > 8 && G > 4)
+		G = 4;
+	/* Twice G x G: the covered ones wait behind while the rest are sorted. */
+	if (!grow_samples(sc, 2 * G * G))
+		return 0;
+	t1 = fabs(P->N.x) < 0.9 ? pm_dv3(1, 0, 0) : pm_dv3(0, 1, 0);
+	t1 = pm_dsub(t1, pm_dscale(P->N, pm_ddot(t1, P->N)));
+	t1 = pm_dscale(t1, 1 / pm_dlen(t1));
+	t2 = pm_dcross(P->N, t1);
+	double va[ROW_MAX_VERTS], vb[ROW_MAX_VERTS];
+	int rows = P->convex && P->nv <= ROW_MAX_VERTS;
+	for (int i = 0; i < P->nv; i++) {
+		double a = pm_ddot(sc->cv[P->v0 + i], t1), b = pm_ddot(sc->cv[P->v0 + i], t2);
+		lo1 = dmin(lo1, a);
+		hi1 = dmax(hi1, a);
+		lo2 = dmin(lo2, b);
+		hi2 = dmax(hi2, b);
+		if (rows) {
+			va[i] = a;
+			vb[i] = b;
+		}
+	}
+	base = pm_dscale(P->N, P->d);
+	P->s0 = sc->nsp;
+	for (int i = 0; i < G; i++) {
+		double a = lo1 + (hi1 - lo1) * (i + 0.5) / G, blo = INFINITY, bhi = -INFINITY;
+		/* A convex polygon meets the row in one interval. */
+		for (int e = 0, f = P->nv - 1; rows && e < P->nv; f = e++)
+			if ((va[e] - a) * (va[f] - a) <= 0 && va[e] != va[f]) {
+				double b = vb[f] + (a - va[f]) * (vb[e] - vb[f]) / (va[e] - va[f]);
+				blo = dmin(blo, b);
+				bhi = dmax(bhi, b);
+			}
+		for (int j = 0; j < G; j++) {
+			double b = lo2 + (hi2 - lo2) * (j + 0.5) / G;
+			pm_dvec3 p = pm_dadd(base, pm_dadd(pm_dscale(t1, a), pm_dscale(t2, b)));
+			if (rows ? b >= blo && b <= bhi : inside(sc, P, p, 0, 1))
+				sc->sp[P->s0 + kept++] = p;
+		}
+	}
+	if (kept == 0) {
+		pm_dvec3 m = pm_dv3(0, 0, 0);
+		for (int i = 0; i < P->nv; i++)
+			m = pm_dadd(m, sc->cv[P->v0 + i]);
+		sc->sp[P->s0 + kept++] = pm_dscale(m, 1.0 / P->nv);
+	}
+	P->ncell = kept;
+	P->ndyn = 0;
+	/* Only samples whose fate is not "open for every direction" cost work
+	 * per photon; they are kept, dynamic ones first. All cells weigh the
+	 * same, so areas are counts times one cell. */
+	double cell = P->A / kept;
+	int nopen = 0, ncov = 0;
+	for (int i = P->s0; i < P->s0 + kept; i++) {
+		int f = -1;
+		if (!seen(sc, P, xo, sc->sp[i], eps))
+			continue;
+		/* Covered by a polygon on P's plane: a backward ray meets it at
+		 * once, whatever its direction. */
+		for (int b = 0; b < P->nfc && f < 0; b++) {
+			const cpoly *B = &sc->g[sc->bl[P->f0 + b]];
+			if (inside(sc, B, sc->sp[i], eps, 0))
+				f = 2 * B->obj + (pm_ddot(B->N, P->Ne) > 0);
+		}
+		/* A layer off P's plane, or a solid P's point lies behind, can
+		 * change the fate with the direction; the front of a solid
+		 * across an edge alone cannot. */
+		for (int b = P->nfc; b < P->nf && f == -1; b++) {
+			int e = sc->bl[P->f0 + b];
+			const cpoly *B = &sc->g[IDX(e)];
+			if (!(e & MATTER) || pm_ddot(B->N, sc->sp[i]) - B->d < -eps)
+				f = -2;
+		}
+		if (f == -1)
+			nopen++;
+		else if (f == -2)
+			sc->sp[P->s0 + P->ndyn++] = sc->sp[i];
+		else {
+			sc->sf[P->s0 + G * G + ncov] = f;
+			sc->sp[P->s0 + G * G + ncov++] = sc->sp[i];
+		}
+	}
+	for (int i = 0; i < ncov; i++) {
+		sc->sf[P->s0 + P->ndyn + i] = sc->sf[P->s0 + G * G + i];
+		sc->sp[P->s0 + P->ndyn + i] = sc->sp[P->s0 + G * G + i];
+	}
+	P->ns = P->ndyn + ncov;
+	sc->nsp += P->ns;
+	P->aopen = cell * nopen;
+	P->adyn = cell * P->ndyn;
+	return 1;
+}
+
+/* Psi . Ne for P, with Psi . n in its place on x's plane so that the cosine
+ * cancels exactly against (Psi . n) in eq. 2. */
+static double
+facing(const cpoly *P, pm_dvec3 psi, double c, pm_dvec3 n)
+{
+	if (P->xpar)
+		return pm_ddot(P->Ne, n) > 0 ? c : 0;
+	return dmax(0, pm_ddot(psi, P->Ne));
+}
+
+/* pm_comp_weights, or with hfix > 0 (pm_comp_weights_cube) the open cube
+ * of that half-size. */
+static void
+weights(const pm_polyindex *pi, pm_vec3 x, pm_vec3 n,
+        const pm_vec3 *pos, const pm_vec3 *dir, int m,
+        int complete, double hfix, pm_comp_scratch *sc, double *w,
+        pm_comp_stats *st)
+{
+	pm_comp_stats z = {0};
+	visit_ctx q = {0};
+	pm_dvec3 xd = pm_dfromf(x), nd = pm_dfromf(n), xo;
+	double hk = 0, hs, h, tau, len = pm_dlen(nd), eps, mx;
+	int valid = 0, inner = 0, na = 0, xf0 = 0, nxf = 0;
+
+	if (m > sc->k)
+		m = sc->k;
+	for (int i = 0; i < m; i++)
+		w[i] = 0;
+	z.found = m > 0 ? m : 0;
+	if (m <= 0 || !pi || !pm_vfinite(x) || !(len > 0) || !isfinite(len))
+		goto out;
+	nd = pm_dscale(nd, 1 / len);
+
+	/* L-infinity distances, exact in double (a difference of floats). */
+	for (int i = 0; i < m; i++) {
+		pm_dvec3 r = pm_dsub(pm_dfromf(pos[i]), xd);
+		double d = dmax(fabs(r.x), dmax(fabs(r.y), fabs(r.z)));
+		sc->d[i] = isfinite(d) ? d : -1;    /* -1: not used */
+		if (d >= 0 && isfinite(d)) {
+			hk = dmax(hk, d);
+			valid++;
+		}
+	}
+	if (valid == 0)
+		goto out;
+
+	/* The boundary shell: the photons at the largest distance, chained down
+	 * through gaps of at most tau. Every photon nearer than the shell is
+	 * certainly in the set; those in it may be only some of their kind. */
+	tau = PM_COMP_TAU_REL * (hfix > 0 ? hfix : hk);
+	hs = hfix > 0 ? hfix : hk;
+	if (hfix > 0) {
+		for (int i = 0; i < m; i++)
+			inner += sc->d[i] >= 0 && sc->d[i] < hs;
+	} else if (!complete) {
+		for (;;) {
+			double lo = hs - tau, nm = hs;
+			for (int i = 0; i < m; i++)
+				if (sc->d[i] >= lo && sc->d[i] < nm)
+					nm = sc->d[i];
+			if (nm == hs)
+				break;
+			hs = nm;
+		}
+		for (int i = 0; i < m; i++)
+			inner += sc->d[i] >= 0 && sc->d[i] < hs;
+	}
+	if (hfix <= 0 && (complete || inner == 0)) {
+		z.closed = 1;
+		h = dmax(hk + tau, PM_COMP_HMIN_REL * pi->extent);
+	} else {
+		h = hs;
+		z.shell = valid - inner;
+	}
+	z.h = h;
+	if (!(h > 0) || !isfinite(h))
+		goto out;
+
+	/* Photons used that arrive in front of n; the others add nothing. */
+	for (int i = 0; i < m; i++) {
+		if (sc->d[i] < 0 || (!z.closed && sc->d[i] >= hs))
+			continue;
+		pm_dvec3 p = pm_dfromf(dir[i]);
+		double l = pm_dlen(p);
+		if (!(l > 0) || !isfinite(l))
+			continue;
+		p = pm_dscale(p, 1 / l);
+		double c = pm_ddot(p, nd);
+		if (!(c > 0))
+			continue;
+		sc->act[na] = i;
+		sc->psi[na] = p;
+		sc->c[na] = c;
+		na++;
+	}
+	z.front = na;
+	if (na == 0)
+		goto out;
+
+	/* The polygons in the cube. */
+	sc->ng = sc->ncv = sc->nsp = sc->nbl = 0;
+	sc->oom = 0;
+	q.sc = sc;
+	q.pi = pi;
+	q.x = xd;
+	q.h = h;
+	q.tau = tau;
+	q.open = !z.closed;
+	pm_polyindex_cube(pi, xd, h, visit, &q);
+	z.polys = sc->ng;
+	if (sc->oom)
+		goto out;
+	/* Beyond float rounding of the vertices, which grows with |x|. */
+	mx = dmax(fabs(xd.x), dmax(fabs(xd.y), fabs(xd.z)));
+	eps = 1e-4 * h + 8 * FLT_EPSILON * mx;
+	xo = pm_dscale(nd, dmax(XOFF_REL * h, 4 * eps));
+
+	for (int a = 0; a < sc->ng; a++) {
+		cpoly *P = &sc->g[a];
+		double sxo = pm_ddot(P->N, xo) - P->d;
+		P->Ne = P->solid || sxo >= 0 ? P->N : pm_dscale(P->N, -1);
+		P->de = pm_ddot(P->Ne, P->N) * P->d;
+		P->xon = fabs(P->d) <= eps && inside(sc, P, pm_dv3(0, 0, 0), eps, 1);
+		P->xpar = fabs(pm_ddot(P->N, nd)) >= 1 - PARALLEL_EPS && fabs(P->d) <= eps;
+		P->aopen = P->A;
+		P->unseen = 0;
+		P->convex = pm_poly_convex(sc->cv + P->v0, P->nv, P->N);
+		P->nfc = P->ndyn = 0;
+		P->adyn = 0;
+	}
+	if (sc->ng > 1) {
+		if (!pair_lists(sc, pi->convex, xo, nd, eps, &xf0, &nxf))
+			goto out;
+		for (int a = 0; a < sc->ng; a++)
+			if (sc->g[a].unseen)
+				sc->g[a].aopen = 0;
+			else if (sc->g[a].nr > 0 || sc->g[a].nf > 0) {
+				if (!sample(sc, &sc->g[a], xo, h, eps))
+					goto out;
+				z.sampled++;
+			}
+	}
+
+	/* Which photons count: each lies on a polygon of the cube, on the side
+	 * that faces its light and x', where x' sees it, and its backward ray
+	 * meets what x's does. */
+	for (int j = 0; j < na; j++) {
+		int i = sc->act[j], own = -1, fy;
+		pm_dvec3 r = pm_dsub(pm_dfromf(pos[i]), xd), psi = sc->psi[j];
+		sc->own[j] = -1;
+		/* A photon in the cube lies on one of its polygons: where only
+		 * one plane holds it, that one (no inside test needed). */
+		int nplane = 0, first = -1;
+		for (int a = 0; a < sc->ng; a++) {
+			const cpoly *P = &sc->g[a];
+			if (fabs(pm_ddot(P->N, r) - P->d) > eps)
+				continue;
+			if (nplane++ == 0)
+				first = a;
+		}
+		if (nplane == 1)
+			own = pm_ddot(psi, sc->g[first].Ne) > 0 ? first : -1;
+		/* Where several do (an edge; the same surface twice), the
+		 * lowest polygon number that faces it and holds it: the one the
+		 * target area keeps of a surface given twice. */
+		for (int a = first; nplane > 1 && a < sc->ng; a++) {
+			const cpoly *P = &sc->g[a];
+			if (fabs(pm_ddot(P->N, r) - P->d) <= eps && pm_ddot(psi, P->Ne) > 0 &&
+			    (own < 0 || P->g < sc->g[own].g) && inside(sc, P, r, eps, 1))
+				own = a;
+		}
+		if (own < 0) {
+			z.hidden++;
+			continue;
+		}
+		const cpoly *P = &sc->g[own];
+		if (P->unseen) {
+			z.hidden++;
+			continue;
+		}
+		sc->fx[j] = fate(sc, sc->bl + xf0, nxf, pm_dv3(0, 0, 0), psi, eps);
+		fy = fate(sc, sc->bl + P->f0, P->nf, r, psi, eps);
+		if (fy != sc->fx[j] || (P->nr > 0 && !seen(sc, P, xo, r, eps))) {
+			z.hidden++;
+			continue;
+		}
+		sc->own[j] = own;
+	}
+
+	/* Eq. 4 over what counts, eq. 2 and 3: Phi_p / A_p (Psi_p . N). */
+	double thr = PM_COMP_SKIP_REL * 4 * h * h;
+	int *cand = sc->bl + sc->nbl;
+	for (int j = 0; j < na; j++) {
+		int own = sc->own[j];
+		double A = 0, c = sc->c[j];
+		pm_dvec3 psi = sc->psi[j];
+		if (own < 0)
+			continue;
+		for (int a = 0; a < sc->ng; a++) {
+			const cpoly *P = &sc->g[a];
+			double f = facing(P, psi, c, nd), s = 0;
+			if (!(f > 0) || P->unseen)
+				continue;
+			/* The polygons off P's plane that a backward ray from P may
+			 * meet along psi. */
+			int nc = 0;
+			for (int b = P->nfc; b < P->nf && P->ndyn > 0; b++)
+				if (reach(sc, P, &sc->g[IDX(sc->bl[P->f0 + b])], psi, eps))
+					cand[nc++] = sc->bl[P->f0 + b];
+			if (nc == 0 && sc->fx[j] < 0) {
+				A += f * (P->aopen + P->adyn);
+				continue;
+			}
+			if (nc == 1 && P->nr == 0 && P->nfc == 0 && P->convex && (cand[0] & FRONT)) {
+				/* One polygon in front of P, all of P seen: what it
+				 * covers of P along psi, exactly. */
+				const cpoly *B = &sc->g[IDX(cand[0])];
+				double dn = pm_ddot(B->N, psi), ov = 0;
+				int fb = (cand[0] & MATTER) && dn < 0 ? -1 : 2 * B->obj + (dn > 0);
+				if (fb >= 0) {
+					if (!grow((void **)&sc->ov, &sc->ovcap, 0, 2 * (B->nv + P->nv) + 8, sizeof *sc->ov))
+						goto out;
+					ov = pm_overlap_area(sc->cv + B->v0, B->nv, sc->cv + P->v0, P->nv, P->N, psi, sc->ov);
+				}
+				s = sc->fx[j] < 0 ? P->A - ov : sc->fx[j] == fb ? ov : 0;
+				A += f * dmax(0, s);
+				continue;
+			}
+			int hit = 0;
+			for (int t = P->s0; t < P->s0 + P->ndyn && nc > 0; t++)
+				hit += fate(sc, cand, nc, sc->sp[t], psi, eps) == sc->fx[j];
+			for (int t = P->s0 + P->ndyn; t < P->s0 + P->ns; t++)
+				hit += sc->sf[t] == sc->fx[j];
+			/* An unsampled polygon has no cells (ncell 0): hit is 0 there,
+			 * and 0 * (A / 0) would be NaN. */
+			s = (sc->fx[j] < 0 ? P->aopen + (nc > 0 ? 0 : P->adyn) : 0) +
+			    (hit > 0 ? hit * (P->A / P->ncell) : 0);
+			A += f * s;
+		}
+		/* The photon's own spot is exposed: never less than its cell. */
+		const cpoly *O = &sc->g[own];
+		A = dmax(A, facing(O, psi, c, nd) * O->A / (O->ncell > 0 ? O->ncell : GRID * GRID));
+		if (A > thr * c)
+			w[sc->act[j]] = c / A;
+		else
+			z.skipped++;
+	}
+out:
+	if (st)
+		*st = z;
+}
+
+void
+pm_comp_weights(const pm_polyindex *pi, pm_vec3 x, pm_vec3 n,
+                const pm_vec3 *pos, const pm_vec3 *dir, int m,
+                int complete, pm_comp_scratch *sc, double *w,
+                pm_comp_stats *st)
+{
+	weights(pi, x, n, pos, dir, m, complete, 0, sc, w, st);
+}
+
+void
+pm_comp_weights_cube(const pm_polyindex *pi, pm_vec3 x, pm_vec3 n,
+                     const pm_vec3 *pos, const pm_vec3 *dir, int m, double h,
+                     pm_comp_scratch *sc, double *w, pm_comp_stats *st)
+{
+	if (!(h > 0) || !isfinite(h)) {
+		for (int i = 0; i < (m < sc->k ? m : sc->k); i++)
+			w[i] = 0;
+		if (st)
+			*st = (pm_comp_stats){.found = m > 0 ? m : 0};
+		return;
+	}
+	weights(pi, x, n, pos, dir, m, 0, h, sc, w, st);
+}
+
+pm_vec3
+pm_estimate_compensated(const pm_polyindex *pi, const pm_photons *map,
+                        pm_vec3 x, pm_vec3 n, pm_vec3 wo,
+                        const pm_material *m, int k,
+                        pm_comp_scratch *sc, pm_estimate_info *info)
+{
+	return pm_estimate_compensated_shrink(pi, map, x, n, wo, m, k, 1, sc, info);
+}
+
+pm_vec3
+pm_estimate_compensated_shrink(const pm_polyindex *pi, const pm_photons *map,
+                               pm_vec3 x, pm_vec3 n, pm_vec3 wo,
+                               const pm_material *m, int k, double shrink,
+                               pm_comp_scratch *sc, pm_estimate_info *info)
+{
+	pm_vec3 L = pm_v3(0, 0, 0);
+	double sum[3] = {0, 0, 0}, inv;
+	float q[3] = {x.x, x.y, x.z}, dfar = 0;
+	int got, complete;
+
+	info->size = 0;
+	info->nphotons = 0;
+	if (!sc)
+		return L;
+	sc->last = (pm_comp_stats){0};
+	if (!pi || !map || !m || k < 1 || map->h.count == 0 || map->h.emitted == 0
+	    || !pm_vfinite(x))
+		return L;
+	if (k > sc->k)
+		k = sc->k;
+	got = pm_kd_knn(map->p, (size_t)map->h.count, q, k, PM_LINF, INFINITY, sc->nn, &dfar);
+	if (got <= 0)
+		return L;
+	for (int i = 0; i < got; i++) {
+		const pm_photon *p = &map->p[sc->nn[i].idx];
+		sc->pos[i] = pm_photon_pos(p);
+		sc->dir[i] = pm_photon_dir(p);
+	}
+	complete = got < k || (uint64_t)got == map->h.count;
+	if (shrink > 0 && shrink < 1 && dfar > 0)
+		pm_comp_weights_cube(pi, x, n, sc->pos, sc->dir, got, shrink * dfar, sc, sc->w, &sc->last);
+	else
+		pm_comp_weights(pi, x, n, sc->pos, sc->dir, got, complete, sc, sc->w, &sc->last);
+	for (int i = 0; i < got; i++) {
+		if (!(sc->w[i] > 0))
+			continue;
+		pm_vec3 f = pm_bsdf_eval(m, n, sc->dir[i], wo);
+		pm_vec3 P = pm_photon_power(&map->p[sc->nn[i].idx]);
+		sum[0] += sc->w[i] * P.x * f.x;
+		sum[1] += sc->w[i] * P.y * f.y;
+		sum[2] += sc->w[i] * P.z * f.z;
+	}
+	inv = 1.0 / (double)map->h.emitted;
+	for (int c = 0; c < 3; c++) {
+		double v = sum[c] * inv;
+		sum[c] = !(v > 0) ? 0 : v > FLT_MAX ? FLT_MAX : v;
+	}
+	L = pm_v3((float)sum[0], (float)sum[1], (float)sum[2]);
+	info->size = (float)sc->last.h;
+	info->nphotons = got;
+	return L;
+}

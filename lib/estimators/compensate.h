@@ -1,0 +1,114 @@
+/* compensate.h — the compensated estimate (Hey & Purgathofer 2001, §3):
+ * pm_estimate_compensated for renderers, which finds the photons and then
+ * does what pm_comp_weights does; the inside of it (weights, statistics) for
+ * tests, benchmarks and inspection tools.
+ *
+ * The model (the README's section on the compensated estimate says why):
+ * a photon's target area A_p is the area, projected along its direction
+ * Psi_p, of the surface in the cube where a photon arriving along Psi_p
+ * could have landed and would have been used, and a photon is used exactly
+ * when its own spot passes the same test. A point y on polygon g passes for
+ * direction Psi when
+ *  - g faces Psi: solids on their front; sheets on the side facing x only;
+ *  - x' = x + (1e-3 of the cube) n sees y: the segment crosses no polygon of
+ *    the cube (faces of x's own solid across a convex edge excepted);
+ *  - y's backward ray along Psi meets what x's does within the cube: nothing
+ *    (or the front of a wall across an edge), or the same object from the
+ *    same side, where only layers (within 60 degrees of parallel to g) and
+ *    the backs of solids are looked for. A layer on g's plane facing it (a
+ *    block resting on a rug) covers y for every direction.
+ * Other choices:
+ *  - The cube is the smallest L-infinity cube around x holding k photons. The
+ *    search may have found only some of the photons on that cube's boundary
+ *    (ties), most visibly when a wall parallel to a cube face enters it:
+ *    then the photons at the boundary distance (within TAU_REL of it, chained)
+ *    are set aside and the cube is taken as open at that distance: its inner
+ *    photons, and the polygons' area inside it, polygons lying in a face plane
+ *    excluded. Every photon inside is then known to be in the set.
+ *  - If the search found every photon there is (fewer than k in the map), or
+ *    all of those it found are on the boundary, the cube is closed and a hair
+ *    larger: every photon found counts, polygons in a face plane count.
+ *  - A polygon parallel to the shading normal n uses Psi_p . n in place of
+ *    Psi_p . N_g, so that for the surface holding x the factor cancels
+ *    between (Psi_p . N) and A_p and grazing photons stay exact.
+ *  - A_p is never less than the photon's own polygon's share of one sample
+ *    cell; a photon whose A_p is (almost) nothing is skipped and counted.
+ *  - Photons all at one point (cube of size 0): the cube gets a minimum
+ *    half-size of HMIN_REL times the size of the photon-surface geometry. */
+#ifndef PM_COMPENSATE_H
+#define PM_COMPENSATE_H
+
+#include "estimators/estimate.h"
+#include "scene/polyindex.h"
+
+#define PM_COMP_TAU_REL 1e-3   /* boundary shell width, relative to h */
+#define PM_COMP_HMIN_REL 1e-6  /* minimum h, relative to the geometry's size */
+#define PM_COMP_SKIP_REL 1e-9  /* A_p below this * (2h)^2 * (Psi.n): skipped */
+
+typedef struct pm_comp_scratch pm_comp_scratch;
+
+/* Per-thread working memory for up to k photons. */
+pm_comp_scratch *pm_comp_scratch_new(int k);
+void pm_comp_scratch_free(pm_comp_scratch *sc);
+
+/* Compensated (paper §3, eq. 1-4): the smallest cube centred at x holding k
+ * photons (L-infinity nearest neighbours); the photon-surface polygons
+ * clipped into it; per photon the target area A_p = sum over front-facing
+ * clipped polygons g of A_g (Psi_p . N_g); L = sum Phi_p / A_p (Psi_p . N)
+ * f_r(x, Psi_p, wo). Arguments as in estimate.h; pi indexes the scene at
+ * the map's time. */
+pm_vec3 pm_estimate_compensated(const pm_polyindex *pi, const pm_photons *map,
+                                pm_vec3 x, pm_vec3 n, pm_vec3 wo,
+                                const pm_material *m, int k,
+                                pm_comp_scratch *sc, pm_estimate_info *info);
+
+/* The same in the consistent mode (pm-render --consistent): the cube of
+ * the k nearest photons, of half-size h_k, shrunk to shrink * h_k with
+ * 0 < shrink < 1 and taken as open there (pm_comp_weights_cube): only the
+ * photons strictly inside count, and the target areas are those in the
+ * smaller cube. The k-th photon lies on the larger cube's boundary, so every
+ * photon inside the smaller one is in the set, and given h_k the others are
+ * spread over the larger cube as the surfaces' photons are: on a flat,
+ * evenly lit surface the estimate is unbiased for any shrink. shrink >= 1
+ * (or <= 0) is pm_estimate_compensated. */
+pm_vec3 pm_estimate_compensated_shrink(const pm_polyindex *pi, const pm_photons *map,
+                                       pm_vec3 x, pm_vec3 n, pm_vec3 wo,
+                                       const pm_material *m, int k, double shrink,
+                                       pm_comp_scratch *sc, pm_estimate_info *info);
+
+typedef struct pm_comp_stats {
+	double h;        /* half-size of the cube used (the clipping cube) */
+	int found;       /* photons found by the search */
+	int shell;       /* of those, set aside on the cube's boundary */
+	int front;       /* used photons arriving in front of n */
+	int skipped;     /* of those, without target area (A_p ~ 0) */
+	int hidden;      /* of those, failing the model's test (not on a facing
+	                    polygon of the cube, unseen from x', another fate) */
+	int polys;       /* polygons with area in the cube */
+	int sampled;     /* of those, given sample points (something can hide part of it) */
+	int closed;      /* 1 if the cube was closed (see above) */
+} pm_comp_stats;
+
+/* The per-photon weights of eq. 3 for m photons already found around x:
+ * w[i] = (Psi_i . n) / A_i for photons that contribute, 0 for the others, so
+ * that L = sum_i w[i] Phi_i f_r(x, Psi_i, wo). pos and dir are the photons'
+ * positions and unit incoming directions; complete says that these are all
+ * the photons there are (the search asked for more than it found). sc must
+ * have room for m photons (pm_comp_scratch_new(k >= m)). st may be NULL. */
+void pm_comp_weights(const pm_polyindex *pi, pm_vec3 x, pm_vec3 n,
+                     const pm_vec3 *pos, const pm_vec3 *dir, int m,
+                     int complete, pm_comp_scratch *sc, double *w,
+                     pm_comp_stats *st);
+
+/* pm_comp_weights for the open cube of half-size h > 0 around x, whatever
+ * the photons' distances: those strictly inside count, the others (and
+ * polygons in the cube's face planes) do not. The caller must know that
+ * every photon strictly inside is among the m. */
+void pm_comp_weights_cube(const pm_polyindex *pi, pm_vec3 x, pm_vec3 n,
+                          const pm_vec3 *pos, const pm_vec3 *dir, int m, double h,
+                          pm_comp_scratch *sc, double *w, pm_comp_stats *st);
+
+/* The statistics of the last pm_estimate_compensated call with sc. */
+const pm_comp_stats *pm_comp_last(const pm_comp_scratch *sc);
+
+#endif

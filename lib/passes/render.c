@@ -1,0 +1,341 @@
+/* render.c — the view pass (see render.h). */
+#include "passes/render.h"
+
+#include <float.h>
+#include <math.h>
+#include <omp.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "optics/bsdf.h"
+#include "scene/camera.h"
+#include "passes/direct.h"
+#include "estimators/edge.h"
+#include "base/rng.h"
+
+#define RENDER_DOMAIN 0x52454e444552ull
+
+const char *const pm_render_chans[PM_RENDER_NCHAN] = {
+	"R", "G", "B",
+	"direct.R", "direct.G", "direct.B",
+	"indirect.R", "indirect.G", "indirect.B",
+	"specular.R", "specular.G", "specular.B",
+	"size", "count", "edge",
+};
+
+/* What one camera sample brought, by where it came from (formats/image.md):
+ * direct = emission seen and shadow rays at a first-hit diffuse surface;
+ * indirect = the photon estimate there (or, for path, everything after the
+ * first bounce); specular = whatever arrived through a first hit that
+ * continued the path (mirror, glass, strong glossy). */
+typedef struct sample {
+	pm_vec3 direct, indirect, specular;
+	float size;
+	int count, estimated, edge;
+} sample;
+
+typedef struct ctx {
+	const pm_scene *s;
+	const pm_accel *a;
+	const pm_lights *L;
+	const pm_render_opts *o;
+	const pm_estimator *est;
+	pm_est_in in;
+	pm_direct dl;       /* the scene, accel and lights again, for direct.h */
+	float pixel_angle;  /* a pixel's width in radians at the image centre */
+	int light_samples;  /* o->light_samples, at least 1 */
+	pm_gather gather;   /* used if o->gather */
+} ctx;
+
+/* What a pixel's camera samples share. Its first-hit photon estimate,
+ * reused by its later camera samples that land on the same polygon
+ * (opts.estimate_once): the first sample's point is uniform over the
+ * pixel's footprint on that polygon, so the pixel's expected value is
+ * unchanged, provided that whether it is reused does not depend on that
+ * point. Reuse pays where the estimate's support (2 info.size across)
+ * covers at least the area of the pixel's footprint: the estimate then
+ * barely varies within the pixel, while a support smaller than the
+ * footprint (few photons per estimate, many per pass) would lose the
+ * averaging of the samples' estimates, which are then nearly independent.
+ * That test is made on the previous pixel of the row, on the same polygon,
+ * or else on the pixel's first estimate, which then is used once and the
+ * next one reused: made on the estimate it reuses, it kept dim estimates
+ * (wide support) and diluted bright ones (narrow support), and a caustic
+ * read 10 % dark. */
+typedef struct pxcache {
+	int valid;            /* L and info hold poly's estimate, to reuse */
+	uint32_t poly;
+	pm_vec3 L;
+	pm_estimate_info info;
+	int allow;            /* from the previous pixel: reuse on allow_poly */
+	uint32_t allow_poly;
+	int rec;              /* this pixel's first estimate, for the next */
+	int rec_ok;
+	uint32_t rec_poly;
+	/* The guide (opts.guide) at the pixel's first strong glossy hit,
+	 * reused by its later samples on the same polygon: any histogram
+	 * leaves the mean alone, and one a few millimetres away is as good. */
+	int gvalid;
+	uint32_t gpoly;
+	pm_guide gd;
+} pxcache;
+
+static pm_vec3
+first_estimate(const ctx *c, void *sc, const pm_hit *h, pm_vec3 n, pm_vec3 wo,
+               const pm_material *m, pxcache *pc, pm_estimate_info *info)
+{
+	pm_vec3 L;
+
+	if (pc && pc->valid && pc->poly == h->poly) {
+		*info = pc->info;
+		return pc->L;
+	}
+	L = c->est->estimate(&c->in, sc, h->p, n, wo, m, info);
+	if (pc) {
+		if (!pc->rec) {
+			/* The footprint's area: the pixel's angle at distance t,
+			 * squared, stretched by the obliquity (capped, for
+			 * grazing views); the support's: (2 size)^2, a cube's
+			 * cross-section. */
+			float cosv = fabsf(pm_dot(n, wo));
+			float w = h->t * c->pixel_angle;
+			pc->rec = 1;
+			pc->rec_ok = w * w / (cosv > 0.05f ? cosv : 0.05f) <= 4.0f * info->size * info->size;
+			pc->rec_poly = h->poly;
+			/* No word from the previous pixel on this polygon: this
+			 * estimate decides for the next one here, which is
+			 * reused, and is itself used once. */
+			if (!(pc->allow && pc->allow_poly == h->poly)) {
+				pc->allow = pc->rec_ok;
+				pc->allow_poly = h->poly;
+				pc->valid = 0;
+				return L;
+			}
+		}
+		pc->valid = pc->allow && pc->allow_poly == h->poly;
+		pc->poly = h->poly;
+		pc->L = L;
+		pc->info = *info;
+	}
+	return L;
+}
+
+/* Follows a camera path from o along d, its vertex depth, its throughput
+ * beta, from the scattering point prev (density bpdf of the BSDF sample that
+ * led here, a delta or not, nlprev light samples taken there). bucket is
+ * where contributions after the first hit go (set at depth 0). */
+static void
+walk(const ctx *c, void *sc, pm_vec3 o, pm_vec3 d, int depth, pm_vec3 beta, pm_vec3 prev,
+     int delta, float bpdf, int nlprev, pm_vec3 *bucket, sample *out, pxcache *pc, pm_rng *r)
+{
+	int maxd = c->o->max_depth > 0 ? c->o->max_depth : 64;
+	pm_hit h;
+
+	for (; depth < maxd; depth++) {
+		const pm_material *m;
+		pm_vec3 wo = pm_neg(d), n;
+		pm_vec3 *here;
+		pm_scatter bs;
+		pm_guide gd;
+		const pm_guide *g = NULL;
+		int ends, nl;
+
+		if (!pm_accel_hit(c->a, o, d, 0.0f, FLT_MAX, &h)) {
+			pm_vec3 *sky = depth == 0 ? &out->direct : bucket;
+			*sky = pm_add(*sky, pm_mul(beta, pm_direct_escaped(&c->dl, d, bpdf, delta, nlprev)));
+			return;
+		}
+		m = &c->s->mats[c->s->objs[h.obj].material];
+		n = pm_dot(h.ng, wo) >= 0 ? h.ng : pm_neg(h.ng);
+		if (depth == 0)
+			bucket = pm_mat_is_photon_surface(m) ? &out->indirect : &out->specular;
+		here = depth == 0 ? (m->strong ? &out->specular : &out->direct) : bucket;
+		*here = pm_add(*here, pm_mul(beta, pm_direct_emitted(&c->dl, &h, prev, d, bpdf, delta, nlprev)));
+		ends = pm_mat_is_photon_surface(m) && c->est->estimate;
+		nl = depth == 0 || ends ? c->light_samples : 1;
+		/* The guide is built before the light samples: their weights
+		 * take the density the continuation is drawn with. */
+		if (c->o->guide && m->kind == PM_MAT_GLOSSY && m->strong) {
+			/* Only the diffuse lobe's light is spread out over the
+			 * hemisphere; the glossy lobe keeps its own samples. */
+			pm_guide *slot = depth == 0 ? &pc->gd : &gd;
+			if (!(depth == 0 && pc->gvalid && pc->gpoly == h.poly)) {
+				pm_guide_build(slot, c->o->guide, h.p, n);
+				slot->share = 0.5f * pm_bsdf_diffuse_share(m);
+				pc->gvalid |= depth == 0;
+				pc->gpoly = depth == 0 ? h.poly : pc->gpoly;
+			}
+			g = slot;
+		}
+		if (m->kind == PM_MAT_DIFFUSE || m->kind == PM_MAT_GLOSSY)
+			*here = pm_add(*here, pm_mul(beta, pm_direct_light(&c->dl, h.p, h.ng, n, wo, m, nl, g, r)));
+		if ((g ? pm_guide_mix(g, m, h.ng, n, wo, r, &bs) : pm_bsdf_sample(m, h.ng, wo, r, &bs)) != 0)
+			bs.pdf = -1;
+		if (ends) {
+			pm_estimate_info info;
+			pm_vec3 L;
+			/* The BSDF-sampled half of the direct light. */
+			*here = pm_add(*here, pm_mul(beta, pm_direct_bsdf_light(&c->dl, h.p, h.ng, &bs, nl)));
+			/* Gathering draws its own rays: one gather per camera sample. */
+			L = c->o->gather ? pm_gather_radiance(&c->gather, sc, r, h.p, h.ng, n, wo, m, &info)
+			                 : first_estimate(c, sc, &h, n, wo, m,
+			                                  depth == 0 && c->o->estimate_once ? pc : NULL, &info);
+			*bucket = pm_add(*bucket, pm_mul(beta, L));
+			if (depth == 0) {
+				out->size = info.size;
+				out->count = info.nphotons;
+				out->estimated = 1;
+				out->edge = pm_polyindex_near_edge(c->in.pi, h.p, info.size);
+			}
+			return;
+		}
+		if (bs.pdf < 0)
+			return;
+		beta = pm_mul(beta, bs.weight);
+		delta = bs.delta;
+		bpdf = bs.pdf;
+		nlprev = nl;
+		prev = h.p;
+		if (depth >= 3) {
+			float q = fminf(0.95f, pm_maxc(beta));
+			if (!(q > 0) || pm_rng_f(r) >= q)
+				return;
+			beta = pm_scale(beta, 1.0f / q);
+		}
+		o = pm_accel_offset(c->a, h.p, h.ng, bs.wi);
+		d = bs.wi;
+	}
+}
+
+/* One camera sample; the camera counts as a delta, so emitters seen count. */
+static void
+trace(const ctx *c, void *sc, pm_vec3 o, pm_vec3 d, pm_rng *r, sample *out, pxcache *pc)
+{
+	memset(out, 0, sizeof *out);
+	walk(c, sc, o, d, 0, pm_v3(1, 1, 1), o, 1, 0.0f, 1, NULL, out, pc, r);
+}
+
+static int
+finite_sample(const sample *s)
+{
+	return pm_vfinite(s->direct) && pm_vfinite(s->indirect) && pm_vfinite(s->specular);
+}
+
+int
+pm_render(const pm_frame *f, const pm_photons *map, const pm_render_opts *o,
+          pm_image *img, pm_error *err)
+{
+	const pm_scene *s = f->s;
+	const pm_estimator *est = o->estimator;
+	ctx c = {s, f->accel, &f->lights, o, est,
+	         {s, f->accel, map, f->pi, o->k, o->classical_norm, o->shrink},
+	         {s, f->accel, &f->lights}, 0.0f,
+	         o->light_samples > 1 ? o->light_samples : 1, {0}};
+	pm_camera cam;
+	int W, H, fail = 0;
+	size_t npx;
+
+	if ((est->needs & PM_NEEDS_MAP) && !map)
+		return pm_seterr(err, "the %s estimate needs a photon map", est->name);
+	if ((est->needs & PM_NEEDS_POLYINDEX) && !f->pi)
+		return pm_seterr(err, "the %s estimate needs a polygon index", est->name);
+	if (o->classical_norm != PM_NORM_K && o->classical_norm != PM_NORM_K1)
+		return pm_seterr(err, "unknown classical normalisation %d", o->classical_norm);
+	if (o->gather && !est->estimate)
+		return pm_seterr(err, "gathering needs an estimate, not %s", est->name);
+	if (o->gather)
+		pm_gather_init(&c.gather, f, est, &c.in, o->gather);
+	if (pm_camera_init(&cam, &s->camera, err) != 0)
+		return pm_preferr(err, "%s", s->path);
+	c.pixel_angle = 2.0f * cam.tan_half / (float)cam.height;
+	W = cam.width;
+	H = cam.height;
+	npx = (size_t)W * H;
+	if (pm_image_init(img, W, H, PM_RENDER_NCHAN, pm_render_chans, err) != 0)
+		return -1;
+	if (est->image) {
+		if (est->image(&c.in, &cam, img, err) != 0) {
+			pm_image_free(img);
+			return -1;
+		}
+		if (o->progress)
+			o->progress(o->progress_arg, (uint64_t)H, (uint64_t)H);
+		return 0;
+	}
+
+	int rows_done = 0;
+	#pragma omp parallel reduction(|:fail)
+	{
+		void *sc = est->scratch_new ? est->scratch_new(o->k) : NULL;
+		if (est->scratch_new && !sc)
+			fail = 1;
+		#pragma omp for schedule(dynamic, 1)
+		for (int y = 0; y < H; y++) {
+			int allow = 0;
+			uint32_t allow_poly = 0;
+			if (fail)
+				continue;
+			for (int x = 0; x < W; x++) {
+				size_t i = (size_t)y * W + x;
+				pm_rng r = pm_rng_seed(o->seed ^ RENDER_DOMAIN, i);
+				pm_vec3 dsum = {0}, isum = {0}, ssum = {0};
+				double size = 0;
+				long count = 0;
+				int nest = 0, nedge = 0;
+				/* Not zeroed whole: the guide's histogram is read
+				 * only once built (gvalid). */
+				pxcache pc;
+				pc.valid = pc.rec = pc.gvalid = 0;
+				pc.allow = allow;
+				pc.allow_poly = allow_poly;
+				for (int k = 0; k < o->spp; k++) {
+					sample smp;
+					float sx = (float)x + pm_rng_f(&r), sy = (float)y + pm_rng_f(&r);
+					trace(&c, sc, cam.eye, pm_camera_dir(&cam, sx, sy), &r, &smp, &pc);
+					if (!finite_sample(&smp))
+						continue;
+					dsum = pm_add(dsum, smp.direct);
+					isum = pm_add(isum, smp.indirect);
+					ssum = pm_add(ssum, smp.specular);
+					if (smp.estimated) {
+						size += smp.size;
+						count += smp.count;
+						nedge += smp.edge;
+						nest++;
+					}
+				}
+				allow = pc.rec && pc.rec_ok;
+				allow_poly = pc.rec ? pc.rec_poly : 0;
+				float inv = 1.0f / (float)o->spp;
+				pm_vec3 tot = pm_scale(pm_add(dsum, pm_add(isum, ssum)), inv);
+				float v[PM_RENDER_NCHAN] = {
+					tot.x, tot.y, tot.z,
+					dsum.x * inv, dsum.y * inv, dsum.z * inv,
+					isum.x * inv, isum.y * inv, isum.z * inv,
+					ssum.x * inv, ssum.y * inv, ssum.z * inv,
+					nest ? (float)(size / nest) : 0.0f,
+					nest ? (float)count / (float)nest : 0.0f,
+					nest ? (float)nedge / (float)nest : 0.0f,
+				};
+				for (int ch = 0; ch < PM_RENDER_NCHAN; ch++)
+					img->px[(size_t)ch * npx + i] = v[ch];
+			}
+			/* Progress from one thread only: the hook need not be
+			 * thread-safe, and nothing it does reaches the image. */
+			int done;
+			#pragma omp atomic capture
+			done = ++rows_done;
+			if (o->progress && omp_get_thread_num() == 0)
+				o->progress(o->progress_arg, (uint64_t)done, (uint64_t)H);
+		}
+		if (sc)
+			est->scratch_free(sc);
+	}
+	if (fail) {
+		pm_image_free(img);
+		return pm_seterr(err, "out of memory");
+	}
+	if (o->progress)
+		o->progress(o->progress_arg, (uint64_t)H, (uint64_t)H);
+	return 0;
+}

@@ -1,0 +1,45 @@
+/* accel.h — ray casting against the scene's triangles at one shutter time,
+ * through Embree 3 (embree3/rtcore.h).
+ *
+ * Built once per pass from the scene's vertices at the pass's time; then
+ * read-only and safe to query from many threads. The BVH is built on one
+ * thread so the result cannot depend on the thread count. */
+#ifndef PM_ACCEL_H
+#define PM_ACCEL_H
+
+#include "base/err.h"
+#include "scene/scene.h"
+#include "base/vec.h"
+
+typedef struct pm_accel pm_accel;
+
+typedef struct pm_hit {
+	float t;            /* distance along the (unit) ray direction */
+	pm_vec3 p;          /* hit point */
+	pm_vec3 ng;         /* unit geometric front normal of the polygon hit */
+	uint32_t tri, poly; /* triangle and polygon index */
+	int obj;            /* object index */
+} pm_hit;
+
+/* verts: positions at the pass's time (pm_scene_verts_at); copied. */
+int pm_accel_build(pm_accel **out, const pm_scene *s, const pm_vec3 *verts, pm_error *err);
+void pm_accel_free(pm_accel *a);
+
+/* Closest hit of the ray o + t d, t in (tmin, tmax); returns 1 and fills *h,
+ * or 0 for a miss. d must be unit length. */
+int pm_accel_hit(const pm_accel *a, pm_vec3 o, pm_vec3 d, float tmin, float tmax, pm_hit *h);
+
+/* 1 if anything blocks the segment o + t d, t in (tmin, tmax). */
+int pm_accel_occluded(const pm_accel *a, pm_vec3 o, pm_vec3 d, float tmin, float tmax);
+
+/* A ray origin nudged off a surface at p with unit normal ng toward the side
+ * of direction d, by an amount that scales with the scene's size and with
+ * the coordinates' magnitude (float spacing), so self-hits are avoided near
+ * and far from the origin alike. */
+pm_vec3 pm_accel_offset(const pm_accel *a, pm_vec3 p, pm_vec3 ng, pm_vec3 d);
+
+/* The size of that nudge at p: also how far short of a target point a
+ * shadow ray must stop so as not to hit the target's own surface. */
+float pm_accel_eps(const pm_accel *a, pm_vec3 p);
+
+#endif
