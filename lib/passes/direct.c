@@ -56,10 +56,21 @@ pm_direct_light(const pm_direct *c, pm_vec3 x, pm_vec3 ng, pm_vec3 n, pm_vec3 wo
 		f = pm_bsdf_eval(m, n, wi, wo);
 		if (pm_maxc(f) <= 0)
 			continue;
-		pm_vec3 o = pm_accel_offset(c->a, x, ng, wi), lp = pm_add(x, pm_scale(wi, dist));
-		if (isinf(dist) ? pm_accel_occluded(c->a, o, wi, 0.0f, FLT_MAX)
-		                : light_blocked(c, o, wi, pm_len(pm_sub(lp, o)), lp))
-			continue;
+		pm_vec3 o = pm_accel_offset(c->a, x, ng, wi);
+		if (isinf(dist)) {
+			if (pm_accel_occluded(c->a, o, wi, 0.0f, FLT_MAX))
+				continue;
+		} else {
+			/* Aimed from the offset origin at the light point: along
+			 * wi from o, a ray grazing the light's surface (the rim of
+			 * a sphere lamp) met it short of the point and the sample
+			 * counted as shadowed (a sphere lamp's floor read 2 %
+			 * dark). */
+			pm_vec3 lp = pm_add(x, pm_scale(wi, dist)), v = pm_sub(lp, o);
+			float dl = pm_len(v);
+			if (!(dl > 0) || light_blocked(c, o, pm_scale(v, 1.0f / dl), dl, lp))
+				continue;
+		}
 		w = lpdf > 0 ? mis((float)nl * lpdf, pm_guide_mix_pdf(gd, m, n, wi, wo)) : 1.0f;
 		sum = pm_add(sum, pm_scale(pm_mul(f, li), cosx * w));
 	}
