@@ -51,7 +51,9 @@ pm_direct_light(const pm_direct *c, pm_vec3 x, pm_vec3 ng, pm_vec3 n, pm_vec3 wo
 		if (!pm_lights_sample_u(c->L, x, u0, u1, u2, &wi, &dist, &li, &lpdf))
 			continue;
 		cosx = pm_dot(wi, n);
-		if (cosx <= 0)
+		/* Below the facet, whatever the shading normal says: the
+		 * surface itself is in the way. */
+		if (cosx <= 0 || pm_dot(wi, ng) * pm_dot(wo, ng) <= 0)
 			continue;
 		f = pm_bsdf_eval(m, n, wi, wo);
 		if (pm_maxc(f) <= 0)

@@ -132,6 +132,8 @@ pm_accel_hit(const pm_accel *a, pm_vec3 o, pm_vec3 d, float tmin, float tmax, pm
 	h->poly = a->s->tri_poly[h->tri];
 	h->ng = a->s->poly_normal[h->poly];
 	h->obj = (int)a->s->poly_obj[h->poly];
+	h->u = rh.hit.u;
+	h->v = rh.hit.v;
 	return 1;
 }
 
@@ -161,4 +163,21 @@ pm_accel_offset(const pm_accel *a, pm_vec3 p, pm_vec3 ng, pm_vec3 d)
 {
 	float eps = pm_accel_eps(a, p);
 	return pm_add(p, pm_scale(ng, pm_dot(ng, d) >= 0 ? eps : -eps));
+}
+
+pm_vec3
+pm_hit_shading(const pm_scene *s, const pm_hit *h)
+{
+	const uint32_t *t;
+	pm_vec3 n;
+
+	if (!s->vnormal || !s->objs[h->obj].smooth)
+		return h->ng;
+	t = s->tris[h->tri];
+	n = pm_add(pm_add(pm_scale(s->vnormal[t[0]], 1.0f - h->u - h->v), pm_scale(s->vnormal[t[1]], h->u)),
+	           pm_scale(s->vnormal[t[2]], h->v));
+	float l = pm_len(n);
+	if (!(l > 0) || !(pm_dot(n, h->ng) > 0))
+		return h->ng;
+	return pm_scale(n, 1.0f / l);
 }

@@ -19,7 +19,13 @@ typedef struct pm_hit {
 	pm_vec3 ng;         /* unit geometric front normal of the polygon hit */
 	uint32_t tri, poly; /* triangle and polygon index */
 	int obj;            /* object index */
+	float u, v;         /* barycentrics: p = (1-u-v) t0 + u t1 + v t2 of tris[tri] */
 } pm_hit;
+
+/* The shading normal at h, toward the front: its vertices' normals
+ * interpolated (scene.h, vnormal) if its object is smooth, else h->ng; ng
+ * too where the interpolation fails or faces away from ng. */
+pm_vec3 pm_hit_shading(const pm_scene *s, const pm_hit *h);
 
 /* verts: positions at the pass's time (pm_scene_verts_at); copied. */
 int pm_accel_build(pm_accel **out, const pm_scene *s, const pm_vec3 *verts, pm_error *err);

@@ -341,7 +341,9 @@ int read(const char *path, pm_meshdata *out, pm_error *err)
 
 	Mesh mesh;
 	Importer imp(mesh, (unsigned long long)st.st_size);
-	OpenMesh::IO::Options opt;
+	// Vertex normals are read when the file has them (OBJ vn, PLY nx ny nz).
+	OpenMesh::IO::Options opt = OpenMesh::IO::Options::VertexNormal;
+	mesh.request_vertex_normals();
 	try {
 		ok = OpenMesh::IO::IOManager().read(path, imp, opt);
 	} catch (const TooBig &e) {
@@ -384,6 +386,16 @@ int read(const char *path, pm_meshdata *out, pm_error *err)
 			break;
 		}
 
+	if (opt.check(OpenMesh::IO::Options::VertexNormal)) {
+		out->normals = (double *)std::malloc(verts.size() * sizeof(double));
+		if (!out->normals)
+			return fail(out, err, path, "out of memory");
+		for (auto v : mesh.vertices()) {
+			const Mesh::Normal &n = mesh.normal(v);
+			for (int k = 0; k < 3; k++)
+				out->normals[3 * v.idx() + k] = n[k];
+		}
+	}
 	out->verts = (double *)std::malloc(verts.size() * sizeof(double));
 	out->face_start = (uint32_t *)std::malloc(start.size() * sizeof(uint32_t));
 	out->face_vert = (uint32_t *)std::malloc(fv.size() * sizeof(uint32_t));
@@ -420,6 +432,7 @@ extern "C" void pm_mesh_free(pm_meshdata *m)
 	if (!m)
 		return;
 	std::free(m->verts);
+	std::free(m->normals);
 	std::free(m->face_start);
 	std::free(m->face_vert);
 	std::memset(m, 0, sizeof *m);

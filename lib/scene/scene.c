@@ -398,7 +398,12 @@ typedef struct {
 	pm_vec3 motion;
 	int inward;   /* -1: not allowed */
 	int subdiv;   /* -1: not allowed */
+	int shading;  /* 0: not allowed; else SHADE_* */
 } tail;
+
+/* An object's shading normals: as its shape gives them (a mesh file's),
+ * computed from its faces (smooth), or none (flat). */
+enum { SHADE_DEFAULT = 1, SHADE_SMOOTH, SHADE_FLAT };
 
 /* The rotation by d[3] degrees about the axis d[0..2] into a (which is
  * zeroed, translation included). */
@@ -466,6 +471,11 @@ parse_tail(parser *p, tail *t)
 				return perr(p, "%s: 'move' given twice", p->stmt);
 			if (vec3(p, &t->motion, "'move'"))
 				return -1;
+		} else if ((!strcmp(w, "smooth") || !strcmp(w, "flat")) && t->shading) {
+			p->pos++;
+			if (t->shading != SHADE_DEFAULT)
+				return perr(p, "%s: 'smooth' or 'flat' given twice", p->stmt);
+			t->shading = w[0] == 's' ? SHADE_SMOOTH : SHADE_FLAT;
 		} else if (!strcmp(w, "inward") && t->inward == 0) {
 			p->pos++;
 			t->inward = 1;
@@ -491,7 +501,9 @@ parse_tail(parser *p, tail *t)
 static int
 add_object(parser *p, int mat, const pm_shape *sh, const tail *t, int solid, int flip)
 {
-	pm_build_obj ob = {sh, t->xf, t->motion, mat, solid, flip, p->line, p->stmt};
+	int normals = t->shading == SHADE_SMOOTH && !sh->normals ? PM_NORMALS_SMOOTH
+	            : t->shading != SHADE_FLAT && sh->normals ? PM_NORMALS_SHAPE : PM_NORMALS_FLAT;
+	pm_build_obj ob = {sh, t->xf, t->motion, mat, solid, flip, p->line, p->stmt, normals};
 	pm_error e;
 	if (pm_build_object(p->b, &ob, &e))
 		return berr(p, &e);
@@ -581,7 +593,7 @@ st_sphere(parser *p)
 {
 	int mat;
 	double c[4];
-	tail t = {.inward = -1, .subdiv = 0};
+	tail t = {.inward = -1, .subdiv = 0, .shading = SHADE_DEFAULT};
 	if (material_arg(p, &mat) || numbers(p, 4, c, "the material"))
 		return -1;
 	if (!(c[3] > 0))
@@ -591,6 +603,13 @@ st_sphere(parser *p)
 	pm_shape sh;
 	if (pm_shape_sphere(&sh, c, t.subdiv ? t.subdiv : PM_SPHERE_DEFAULT_SUBDIV))
 		return perr(p, "out of memory");
+	/* Smooth: the true sphere's normals at the vertices. */
+	if (t.shading == SHADE_SMOOTH && !(sh.normals = malloc(3 * (size_t)sh.nverts * sizeof *sh.normals))) {
+		pm_shape_free(&sh);
+		return perr(p, "out of memory");
+	}
+	for (uint32_t i = 0; sh.normals && i < 3 * sh.nverts; i++)
+		sh.normals[i] = (sh.verts[i] - c[i % 3]) / c[3];
 	int r = add_object(p, mat, &sh, &t, 1, 0);
 	pm_shape_free(&sh);
 	return r;
@@ -601,7 +620,7 @@ st_mesh(parser *p)
 {
 	const char *file = peek(p);
 	int mat;
-	tail t = {.inward = -1, .subdiv = -1};
+	tail t = {.inward = -1, .subdiv = -1, .shading = SHADE_DEFAULT};
 	if (!file)
 		return perr(p, "mesh: expected a file name");
 	p->pos++;
@@ -619,7 +638,9 @@ st_mesh(parser *p)
 		free(path);
 		return pm_preferr(p->err, "%s:%d", p->path, p->line);
 	}
-	pm_shape sh = {md.nverts, md.verts, md.nfaces, md.face_start, md.face_vert};
+	/* smooth: normals computed from the faces, not the file's. */
+	pm_shape sh = {md.nverts, md.verts, md.nfaces, md.face_start, md.face_vert,
+	               t.shading == SHADE_SMOOTH ? NULL : md.normals};
 	/* Messages about the mesh's geometry name the file. */
 	snprintf(p->stmt_buf, sizeof p->stmt_buf, "mesh '%s'", path);
 	p->stmt = p->stmt_buf;
@@ -1051,6 +1072,7 @@ pm_scene_free(pm_scene *s)
 		free(s->lights[i].env);
 	free(s->lights);
 	free(s->verts);
+	free(s->vnormal);
 	free(s->poly_start);
 	free(s->poly_vert);
 	free(s->poly_obj);

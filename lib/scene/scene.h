@@ -39,6 +39,7 @@ typedef struct pm_object {
 	uint32_t first_tri, ntris;    /* range in the triangle arrays */
 	uint32_t first_vert, nverts;  /* range in verts */
 	int line;           /* scene line that made it, for messages */
+	int smooth;         /* 1: its vertices carry shading normals (vnormal) */
 } pm_object;
 
 /* The lights that are not surfaces (formats/scene.md): point, spot,
@@ -83,6 +84,10 @@ typedef struct pm_scene {
 	pm_pointlight *lights; int nlights;
 
 	pm_vec3 *verts;     uint32_t nverts;  /* world space at t = 0 */
+	/* Shading normals per vertex (unit, toward the front; motion only
+	 * translates, so they hold at every time), or NULL if no object is
+	 * smooth; 0 for the vertices of objects that are not. */
+	pm_vec3 *vnormal;
 
 	/* Planar polygons (>= 3 vertices, nonzero area, counter-clockwise seen
 	 * from the front). Polygon i has vertices poly_vert[poly_start[i] ..

@@ -82,6 +82,11 @@ light_identity(const pm_scene *s)
 		for (uint32_t j = s->poly_start[i]; j < s->poly_start[i + 1]; j++)
 			h = put_u32(h, s->poly_vert[j]);
 	}
+	/* Shading normals only where some object has them, so that the
+	 * identities of scenes without stay what they were. */
+	if (s->vnormal)
+		for (uint32_t i = 0; i < s->nverts; i++)
+			h = put_vec(h, s->vnormal[i]);
 	return h;
 }
 

@@ -210,6 +210,7 @@ pm_shape_sphere(pm_shape *sh, const double c[4], int subdiv)
 void
 pm_shape_free(pm_shape *sh)
 {
+	free(sh->normals);
 	free(sh->verts);
 	free(sh->face_start);
 	free(sh->face_vert);
