@@ -68,6 +68,7 @@ gather_ray(const pm_gather *g, void *sc, pm_rng *r, pm_vec3 x, pm_vec3 ng, const
 
 	for (int depth = 0; depth < GATHER_DEPTH; depth++) {
 		const pm_material *m;
+		pm_material mt;     /* m with its textures looked up, if it has any */
 		pm_vec3 wo = pm_neg(d), n;
 		pm_scatter bs;
 		pm_hit h;
@@ -78,7 +79,7 @@ gather_ray(const pm_gather *g, void *sc, pm_rng *r, pm_vec3 x, pm_vec3 ng, const
 				acc = pm_add(acc, pm_mul(beta, pm_lights_env(g->L, d, &pdf)));
 			return acc;
 		}
-		m = &g->s->mats[g->s->objs[h.obj].material];
+		m = pm_hit_material(g->s, &h, &mt);
 		n = pm_dot(h.ng, wo) >= 0 ? h.ng : pm_neg(h.ng);
 		if (depth > 0 && !g->o->caustic && pm_maxc(m->emit) > 0 &&
 		    (pm_dot(h.ng, wo) > 0 || m->emit_twosided))

@@ -133,6 +133,7 @@ walk(const ctx *c, void *sc, pm_vec3 o, pm_vec3 d, int depth, pm_vec3 beta, pm_v
 
 	for (; depth < maxd; depth++) {
 		const pm_material *m;
+		pm_material mt;     /* m with its textures looked up, if it has any */
 		pm_vec3 wo = pm_neg(d), n, nf;
 		pm_vec3 *here;
 		pm_scatter bs;
@@ -145,7 +146,7 @@ walk(const ctx *c, void *sc, pm_vec3 o, pm_vec3 d, int depth, pm_vec3 beta, pm_v
 			*sky = pm_add(*sky, pm_mul(beta, pm_direct_escaped(&c->dl, d, bpdf, delta, nlprev)));
 			return;
 		}
-		m = &c->s->mats[c->s->objs[h.obj].material];
+		m = pm_hit_material(c->s, &h, &mt);
 		/* nf: the facet's normal on wo's side, for the estimate (whose
 		 * clipping and target areas are the facets'); n: the shading
 		 * normal there, for direct light and the BSDF (README). */

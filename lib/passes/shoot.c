@@ -89,13 +89,14 @@ trace_path(const pm_scene *s, const pm_accel *a, const pm_lights *L, const pm_sh
 		org = pm_accel_offset(a, org, n, d);
 	for (int bounce = 0; bounce < maxb; bounce++) {
 		const pm_material *m;
+		pm_material mt;     /* m with its textures looked up, if it has any */
 		pm_vec3 wo = pm_neg(d);
 		pm_scatter sc;
 		float q, u[4];
 
 		if (!pm_accel_hit(a, org, d, 0.0f, FLT_MAX, &h))
 			return;
-		m = &s->mats[s->objs[h.obj].material];
+		m = pm_hit_material(s, &h, &mt);
 		/* After the first bounce a hit is kept: in the global (and the
 		 * caustic) map where view paths end, in the guide map where they
 		 * go on by sampling a lobe, not a delta (strong glossy; guide.h). */

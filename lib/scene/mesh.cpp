@@ -343,7 +343,9 @@ int read(const char *path, pm_meshdata *out, pm_error *err)
 	Importer imp(mesh, (unsigned long long)st.st_size);
 	// Vertex normals are read when the file has them (OBJ vn, PLY nx ny nz).
 	OpenMesh::IO::Options opt = OpenMesh::IO::Options::VertexNormal;
+	opt += OpenMesh::IO::Options::VertexTexCoord;
 	mesh.request_vertex_normals();
+	mesh.request_vertex_texcoords2D();
 	try {
 		ok = OpenMesh::IO::IOManager().read(path, imp, opt);
 	} catch (const TooBig &e) {
@@ -396,6 +398,16 @@ int read(const char *path, pm_meshdata *out, pm_error *err)
 				out->normals[3 * v.idx() + k] = n[k];
 		}
 	}
+	if (opt.check(OpenMesh::IO::Options::VertexTexCoord)) {
+		out->uv = (double *)std::malloc(2 * mesh.n_vertices() * sizeof(double));
+		if (!out->uv)
+			return fail(out, err, path, "out of memory");
+		for (auto v : mesh.vertices()) {
+			const Mesh::TexCoord2D &t = mesh.texcoord2D(v);
+			out->uv[2 * v.idx()] = t[0];
+			out->uv[2 * v.idx() + 1] = t[1];
+		}
+	}
 	out->verts = (double *)std::malloc(verts.size() * sizeof(double));
 	out->face_start = (uint32_t *)std::malloc(start.size() * sizeof(uint32_t));
 	out->face_vert = (uint32_t *)std::malloc(fv.size() * sizeof(uint32_t));
@@ -433,6 +445,7 @@ extern "C" void pm_mesh_free(pm_meshdata *m)
 		return;
 	std::free(m->verts);
 	std::free(m->normals);
+	std::free(m->uv);
 	std::free(m->face_start);
 	std::free(m->face_vert);
 	std::memset(m, 0, sizeof *m);

@@ -26,6 +26,9 @@ typedef struct pm_meshdata {
 	/* Per-vertex normals as the file gives them (OBJ vn, PLY nx ny nz),
 	 * 3 * nverts, not normalized; NULL if the file has none. */
 	double *normals;
+	/* Per-vertex texture coordinates (OBJ vt, PLY u v / s t /
+	 * texture_u texture_v), 2 * nverts; NULL if the file has none. */
+	double *uv;
 	/* 1 if the mesh has no boundary halfedges (OpenMesh topology): a closed
 	 * surface. Faces OpenMesh could only add as separate non-manifold
 	 * pieces leave boundaries, so such a mesh is not closed. */

@@ -256,6 +256,64 @@ find_material(const pm_scene *s, const char *name)
 }
 
 static int
+find_texture(const pm_scene *s, const char *name)
+{
+	for (int i = 0; i < s->ntexs; i++)
+		if (!strcmp(s->texs[i].name, name))
+			return i;
+	return -1;
+}
+
+/* The largest of a texture's values (each the mean of R, G, B) and, in
+ * *lo, the smallest. */
+static float
+tex_range(const pm_texture *t, float *lo)
+{
+	float hi;
+	if (t->kind == PM_TEX_CHECKER) {
+		float a = pm_lum(t->c1), b = pm_lum(t->c2);
+		*lo = fminf(a, b);
+		return fmaxf(a, b);
+	}
+	*lo = INFINITY;
+	hi = -INFINITY;
+	for (size_t i = 0; i < (size_t)t->w * t->h; i++) {
+		float v = (t->px[3 * i] + t->px[3 * i + 1] + t->px[3 * i + 2]) / 3;
+		*lo = fminf(*lo, v);
+		hi = fmaxf(hi, v);
+	}
+	return hi;
+}
+
+static float
+tex_max(const pm_texture *t)
+{
+	float lo;
+	return tex_range(t, &lo);
+}
+
+/* "tex NAME" where a material takes a colour or (scalar) a number: *slot
+ * gets the texture's index plus 1. A scalar texture must be > 0 throughout. */
+static int
+tex_arg(parser *p, int *slot, int scalar)
+{
+	p->pos++;
+	const char *name = peek(p);
+	if (!name)
+		return perr(p, "%s: expected a texture name after 'tex'", p->stmt);
+	int i = find_texture(p->s, name);
+	if (i < 0)
+		return perr(p, "%s: unknown texture '%s'", p->stmt, name);
+	p->pos++;
+	float lo;
+	tex_range(&p->s->texs[i], &lo);
+	if (scalar && !(lo > 0))
+		return perr(p, "%s: texture '%s' has values <= 0 (an exponent must be > 0)", p->stmt, name);
+	*slot = i + 1;
+	return 0;
+}
+
+static int
 st_material(parser *p)
 {
 	pm_scene *s = p->s;
@@ -314,14 +372,29 @@ st_material(parser *p)
 		snprintf(after, sizeof after, "'%s'", w);
 		switch (k) {
 		case W_ALBEDO: case W_KD:
+			if (peek(p) && !strcmp(peek(p), "tex")) {
+				if (tex_arg(p, &m.tkd, 0)) return -1;
+				m.kd = pm_v3(0.5f, 0.5f, 0.5f);
+				break;
+			}
 			if (vec3(p, &m.kd, after)) return -1;
 			if (!in01(m.kd)) return perr(p, "%s: %s must be in [0, 1]", stmt, w);
 			break;
 		case W_KS: case W_REFLECT: case W_TINT:
+			if (peek(p) && !strcmp(peek(p), "tex")) {
+				if (tex_arg(p, &m.tks, 0)) return -1;
+				m.ks = pm_v3(0.5f, 0.5f, 0.5f);
+				break;
+			}
 			if (vec3(p, &m.ks, after)) return -1;
 			if (!in01(m.ks)) return perr(p, "%s: %s must be in [0, 1]", stmt, w);
 			break;
 		case W_EXPONENT:
+			if (peek(p) && !strcmp(peek(p), "tex")) {
+				if (tex_arg(p, &m.texp, 1)) return -1;
+				m.exponent = tex_max(&s->texs[m.texp - 1]);
+				break;
+			}
 			if (numbers(p, 1, &d, after)) return -1;
 			if (!(d > 0)) return perr(p, "%s: exponent must be > 0, got %g", stmt, d);
 			m.exponent = (float)d;
@@ -537,8 +610,12 @@ st_quad(parser *p)
 	if (why)
 		return perr(p, "quad: %s", pm_shape_quad_problem(why));
 	pm_shape sh;
-	if (pm_shape_polygon(&sh, c, 4))
+	static const double quv[8] = {0, 0, 1, 0, 1, 1, 0, 1};
+	if (pm_shape_polygon(&sh, c, 4) || !(sh.uv = malloc(sizeof quv))) {
+		pm_shape_free(&sh);
 		return perr(p, "out of memory");
+	}
+	memcpy(sh.uv, quv, sizeof quv);
 	int r = add_object(p, mat, &sh, &t, 0, 0);
 	pm_shape_free(&sh);
 	return r;
@@ -560,8 +637,12 @@ st_triangle(parser *p)
 	if (!(pm_dlen(pm_dcross(e1, e2)) > 1e-9 * size * size))
 		return perr(p, "triangle: zero area (corners coincide or lie on a line)");
 	pm_shape sh;
-	if (pm_shape_polygon(&sh, c, 3))
+	static const double tuv[6] = {0, 0, 1, 0, 0, 1};
+	if (pm_shape_polygon(&sh, c, 3) || !(sh.uv = malloc(sizeof tuv))) {
+		pm_shape_free(&sh);
 		return perr(p, "out of memory");
+	}
+	memcpy(sh.uv, tuv, sizeof tuv);
 	int r = add_object(p, mat, &sh, &t, 0, 0);
 	pm_shape_free(&sh);
 	return r;
@@ -640,7 +721,7 @@ st_mesh(parser *p)
 	}
 	/* smooth: normals computed from the faces, not the file's. */
 	pm_shape sh = {md.nverts, md.verts, md.nfaces, md.face_start, md.face_vert,
-	               t.shading == SHADE_SMOOTH ? NULL : md.normals};
+	               t.shading == SHADE_SMOOTH ? NULL : md.normals, md.uv};
 	/* Messages about the mesh's geometry name the file. */
 	snprintf(p->stmt_buf, sizeof p->stmt_buf, "mesh '%s'", path);
 	p->stmt = p->stmt_buf;
@@ -648,6 +729,90 @@ st_mesh(parser *p)
 	pm_mesh_free(&md);
 	free(path);
 	return r;
+}
+
+static int
+st_texture(parser *p)
+{
+	pm_texture t;
+	memset(&t, 0, sizeof t);
+	t.su = t.sv = 1;
+	const char *name = peek(p), *kind, *file = NULL;
+	int have_scale = 0, have_offset = 0;
+	double d[2];
+	if (!name)
+		return perr(p, "texture: expected a name");
+	if (strlen(name) >= sizeof t.name)
+		return perr(p, "texture: name '%.20s...' longer than %zu bytes", name, sizeof t.name - 1);
+	if (find_texture(p->s, name) >= 0)
+		return perr(p, "texture: '%s' is defined twice", name);
+	strcpy(t.name, name);
+	p->pos++;
+	kind = peek(p);
+	if (kind && !strcmp(kind, "image")) {
+		t.kind = PM_TEX_IMAGE;
+		p->pos++;
+		if (!(file = peek(p)))
+			return perr(p, "texture: expected a file name after 'image'");
+		p->pos++;
+	} else if (kind && !strcmp(kind, "checker")) {
+		t.kind = PM_TEX_CHECKER;
+		p->pos++;
+		if (vec3(p, &t.c1, "'checker'") || vec3(p, &t.c2, "'checker'"))
+			return -1;
+		if (!nonneg(t.c1) || !nonneg(t.c2))
+			return perr(p, "texture: checker colours must be >= 0");
+	} else {
+		return perr(p, "texture '%s': expected 'image' or 'checker'", name);
+	}
+	while (peek(p)) {
+		const char *w = peek(p);
+		int sc = !strcmp(w, "scale");
+		if (!sc && strcmp(w, "offset"))
+			return perr(p, "texture: unexpected '%s' (expected scale or offset)", w);
+		if (sc ? have_scale++ : have_offset++)
+			return perr(p, "texture: '%s' given twice", w);
+		p->pos++;
+		if (numbers(p, 2, d, sc ? "'scale'" : "'offset'"))
+			return -1;
+		if (sc) {
+			t.su = (float)d[0];
+			t.sv = (float)d[1];
+		} else {
+			t.ou = (float)d[0];
+			t.ov = (float)d[1];
+		}
+	}
+	if (file) {
+		size_t len = strlen(p->dir) + strlen(file) + 1;
+		char *path = malloc(len);
+		pm_rgbimage im;
+		if (!path)
+			return perr(p, "out of memory");
+		snprintf(path, len, "%s%s", file[0] == '/' ? "" : p->dir, file);
+		if (pm_rgbimage_read(path, &im, p->err)) {
+			free(path);
+			return pm_preferr(p->err, "%s:%d", p->path, p->line);
+		}
+		for (size_t i = 0; i < (size_t)im.w * im.h * 3; i++)
+			if (!(im.px[i] >= 0 && im.px[i] <= 3e38f)) {
+				int r = perr(p, "texture: '%s': texel (%zu, %zu) is %g, not a finite value >= 0",
+				             path, i / 3 % (size_t)im.w, i / 3 / (size_t)im.w, (double)im.px[i]);
+				free(path);
+				pm_rgbimage_free(&im);
+				return r;
+			}
+		free(path);
+		t.w = im.w;
+		t.h = im.h;
+		t.px = im.px;
+	}
+	pm_error e;
+	if (pm_build_texture(p->b, &t, &e)) {
+		free(t.px);
+		return berr(p, &e);
+	}
+	return 0;
 }
 
 static int
@@ -920,7 +1085,7 @@ statement(parser *p)
 		{"material", st_material}, {"mesh", st_mesh}, {"quad", st_quad}, {"triangle", st_triangle},
 		{"box", st_box}, {"sphere", st_sphere}, {"pointlight", st_pointlight},
 		{"disk", st_disk}, {"spotlight", st_spotlight}, {"distantlight", st_distantlight},
-		{"envlight", st_envlight},
+		{"envlight", st_envlight}, {"texture", st_texture},
 	};
 	const char *w = p->tok[0];
 	for (size_t i = 0; i < sizeof st / sizeof st[0]; i++)
@@ -1073,6 +1238,10 @@ pm_scene_free(pm_scene *s)
 	free(s->lights);
 	free(s->verts);
 	free(s->vnormal);
+	free(s->vuv);
+	for (int i = 0; i < s->ntexs; i++)
+		free(s->texs[i].px);
+	free(s->texs);
 	free(s->poly_start);
 	free(s->poly_vert);
 	free(s->poly_obj);

@@ -28,7 +28,22 @@ typedef struct pm_material {
 	 * glossy with exponent >= the scene's glossy threshold), 0 if photons are
 	 * stored here and the radiance is estimated (diffuse, soft glossy). */
 	int strong;
+	/* Textures (formats/scene.md), each an index into scene->texs plus 1,
+	 * 0 for none: of kd (albedo), of ks (reflect, tint), of the exponent. */
+	int tkd, tks, texp;
 } pm_material;
+
+/* An image or a checkerboard, looked up at a point's (u, v) by
+ * pm_hit_material (accel.h). */
+enum pm_tex_kind { PM_TEX_IMAGE, PM_TEX_CHECKER };
+typedef struct pm_texture {
+	char name[64];
+	int kind;           /* enum pm_tex_kind */
+	int w, h;           /* image: w x h linear RGB texels, row 0 the top */
+	float *px;
+	pm_vec3 c1, c2;     /* checker: the colours of even and odd squares */
+	float su, sv, ou, ov;  /* (u, v) -> (u su + ou, v sv + ov) first */
+} pm_texture;
 
 typedef struct pm_object {
 	int material;       /* index into scene->mats */
@@ -40,6 +55,7 @@ typedef struct pm_object {
 	uint32_t first_vert, nverts;  /* range in verts */
 	int line;           /* scene line that made it, for messages */
 	int smooth;         /* 1: its vertices carry shading normals (vnormal) */
+	int has_uv;         /* 1: its vertices carry texture coordinates (vuv) */
 } pm_object;
 
 /* The lights that are not surfaces (formats/scene.md): point, spot,
@@ -88,6 +104,10 @@ typedef struct pm_scene {
 	 * translates, so they hold at every time), or NULL if no object is
 	 * smooth; 0 for the vertices of objects that are not. */
 	pm_vec3 *vnormal;
+	/* Texture coordinates per vertex (u, v), or NULL if no object has
+	 * them; 0 for the vertices of objects that have not. */
+	float (*vuv)[2];
+	pm_texture *texs;   int ntexs;
 
 	/* Planar polygons (>= 3 vertices, nonzero area, counter-clockwise seen
 	 * from the front). Polygon i has vertices poly_vert[poly_start[i] ..

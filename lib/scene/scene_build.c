@@ -191,6 +191,36 @@ add_face(pm_scene_build *b, uint32_t *idx, uint32_t n, uint32_t obj, const char 
 	return 0;
 }
 
+/* The object o's texture coordinates into s->vuv, kept as s->vnormal is. */
+static int
+build_uv(pm_scene_build *b, const pm_build_obj *ob, pm_object *o, pm_error *err)
+{
+	pm_scene *s = b->s;
+	int first = !s->vuv;
+
+	if (!ob->shape->uv && !s->vuv)
+		return 0;
+	if (grow(&s->vuv, &b->cap_vuv, s->nverts, sizeof *s->vuv, err))
+		return -1;
+	if (first)
+		memset(s->vuv, 0, o->first_vert * sizeof *s->vuv);
+	for (uint32_t i = 0; i < o->nverts; i++) {
+		const double *t = ob->shape->uv ? ob->shape->uv + 2 * (size_t)i : NULL;
+		s->vuv[o->first_vert + i][0] = t && isfinite(t[0]) ? (float)t[0] : 0.0f;
+		s->vuv[o->first_vert + i][1] = t && isfinite(t[1]) ? (float)t[1] : 0.0f;
+	}
+	o->has_uv = ob->shape->uv != NULL;
+	return 0;
+}
+
+int
+pm_build_texture(pm_scene_build *b, const pm_texture *t, pm_error *err)
+{
+	if (b->s->ntexs >= MAX_MATS)
+		return pm_seterr(err, "texture: more than %d textures", MAX_MATS);
+	return append(&b->s->texs, &b->cap_texs, &b->s->ntexs, t, sizeof *t, err);
+}
+
 /* The object o's shading normals (pm_build_obj.normals) into s->vnormal,
  * which exists from the first smooth object on and is kept as long as
  * s->verts, 0 where an object has none. */
@@ -323,7 +353,7 @@ pm_build_object(pm_scene_build *b, const pm_build_obj *ob, pm_error *err)
 	o->ntris = s->ntris - o->first_tri;
 	if (o->npolys == 0)
 		return pm_seterr(err, "%s: no polygon with nonzero area", ob->what);
-	if (build_normals(b, ob, o, err))
+	if (build_normals(b, ob, o, err) || build_uv(b, ob, o, err))
 		return -1;
 	s->nobjs++;
 	return 0;

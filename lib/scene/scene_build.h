@@ -26,7 +26,7 @@ typedef struct pm_scene_build {
 	pm_scene *s;
 	/* capacities of the growing arrays in s */
 	size_t cap_mats, cap_objs, cap_lights, cap_verts, cap_polys, cap_pverts, cap_tris;
-	size_t cap_vnormal;
+	size_t cap_vnormal, cap_vuv, cap_texs;
 	void *work;         /* triangulation scratch */
 	size_t work_size;
 	uint32_t (*tribuf)[3];
@@ -57,6 +57,7 @@ enum {
  * float range or no face has area. Faces with repeated corners lose them,
  * faces without area are dropped, non-planar faces split into triangles. */
 int pm_build_material(pm_scene_build *b, const pm_material *m, pm_error *err);
+int pm_build_texture(pm_scene_build *b, const pm_texture *t, pm_error *err);
 int pm_build_light(pm_scene_build *b, const pm_pointlight *l, pm_error *err);
 int pm_build_object(pm_scene_build *b, const pm_build_obj *ob, pm_error *err);
 

@@ -87,6 +87,23 @@ light_identity(const pm_scene *s)
 	if (s->vnormal)
 		for (uint32_t i = 0; i < s->nverts; i++)
 			h = put_vec(h, s->vnormal[i]);
+	/* Textures likewise: only in scenes that have them. */
+	if (s->ntexs > 0) {
+		h = put_u32(h, (uint32_t)s->ntexs);
+		for (int i = 0; i < s->ntexs; i++) {
+			const pm_texture *t = &s->texs[i];
+			h = put_u32(put_u32(put_u32(h, (uint32_t)t->kind), (uint32_t)t->w), (uint32_t)t->h);
+			for (size_t k = 0; k < (size_t)t->w * t->h * 3; k++)
+				h = put_f32(h, t->px[k]);
+			h = put_vec(put_vec(h, t->c1), t->c2);
+			h = put_f32(put_f32(put_f32(put_f32(h, t->su), t->sv), t->ou), t->ov);
+		}
+		for (int i = 0; i < s->nmats; i++)
+			h = put_u32(put_u32(put_u32(h, (uint32_t)s->mats[i].tkd), (uint32_t)s->mats[i].tks),
+			            (uint32_t)s->mats[i].texp);
+		for (uint32_t i = 0; s->vuv && i < s->nverts; i++)
+			h = put_f32(put_f32(h, s->vuv[i][0]), s->vuv[i][1]);
+	}
 	return h;
 }
 

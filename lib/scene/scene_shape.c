@@ -211,6 +211,7 @@ void
 pm_shape_free(pm_shape *sh)
 {
 	free(sh->normals);
+	free(sh->uv);
 	free(sh->verts);
 	free(sh->face_start);
 	free(sh->face_vert);

@@ -20,6 +20,7 @@ typedef struct pm_shape {
 	uint32_t *face_start;   /* nfaces + 1 */
 	uint32_t *face_vert;
 	double *normals;        /* 3 * nverts shading normals, or NULL */
+	double *uv;             /* 2 * nverts texture coordinates, or NULL */
 } pm_shape;
 
 /* Checks the 4 corners c[12] of a quad: 0 if usable, else a code for
