@@ -12,7 +12,9 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <fstream>
 #include <new>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -155,6 +157,36 @@ std::string extension(const char *path)
 // the PLY grammar (Turk 1994, "The PLY Polygon File Format"): magic, one
 // format line, elements with counts the file could hold, typed properties,
 // end_header within 64 KiB. Returns NULL if it is sound, else the problem.
+// OpenMesh reads a PLY's texture coordinates as u v or s t only; files
+// also name them texture_u texture_v or texture_s texture_t (as pbrt-v4
+// reads them). If the header does, *data gets the file with those names
+// shortened in its header, and the result is true.
+bool ply_texture_names(const char *path, std::string &data)
+{
+	std::ifstream f(path, std::ios::binary);
+	std::ostringstream all;
+	all << f.rdbuf();
+	data = all.str();
+	size_t end = data.find("end_header");
+	if (!f || end == std::string::npos)
+		return false;
+	bool changed = false;
+	static const char *const from[] = {"property float texture_u", "property float texture_v",
+		"property float texture_s", "property float texture_t",
+		"property double texture_u", "property double texture_v",
+		"property double texture_s", "property double texture_t"};
+	for (const char *k : from) {
+		size_t at = data.find(k);
+		if (at != std::string::npos && at < end) {
+			size_t name = data.find("texture_", at);
+			data.erase(name, 8);
+			end -= 8;
+			changed = true;
+		}
+	}
+	return changed;
+}
+
 const char *ply_header_problem(const char *path, unsigned long long fsize)
 {
 	static const char *const types[] = {"char", "uchar", "short", "ushort", "int", "uint",
@@ -347,7 +379,13 @@ int read(const char *path, pm_meshdata *out, pm_error *err)
 	mesh.request_vertex_normals();
 	mesh.request_vertex_texcoords2D();
 	try {
-		ok = OpenMesh::IO::IOManager().read(path, imp, opt);
+		std::string ply;
+		if (ext == "ply" && ply_texture_names(path, ply)) {
+			std::istringstream in(ply);
+			ok = OpenMesh::IO::IOManager().read(in, ".ply", imp, opt);
+		} else {
+			ok = OpenMesh::IO::IOManager().read(path, imp, opt);
+		}
 	} catch (const TooBig &e) {
 		return fail(out, err, path, e.what);
 	}

@@ -28,6 +28,20 @@ if awk -v x="$1" -v y="$2" 'BEGIN { exit !(x < 0.2) }'; then lo1=$1 lo2=$2 hi1=$
 for v in $lo1 $lo2; do num_near "checker dark square: albedo E cos / pi" "$v" "$a" "$(awk -v w=$a 'BEGIN { print w * 0.01 }')"; done
 for v in $hi1 $hi2; do num_near "checker light square: albedo E cos / pi" "$v" "$b" "$(awk -v w=$b 'BEGIN { print w * 0.01 }')"; done
 
+# The same floor as a mesh whose file carries (u, v): OBJ vt, and PLY
+# under each of the names files use.
+printf 'v -1 0 -1\nv -1 0 1\nv 1 0 1\nv 1 0 -1\nvt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\nf 1/1 2/2 3/3 4/4\n' >floor.obj
+for uv in "u v" "s t" "texture_u texture_v" "texture_s texture_t" obj; do
+	if [ "$uv" = obj ]; then f=floor.obj; else
+		f=floor.ply
+		set -- $uv
+		printf 'ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\nproperty float z\nproperty float %s\nproperty float %s\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n-1 0 -1 0 0\n-1 0 1 1 0\n1 0 1 1 1\n1 0 -1 0 1\n4 0 1 2 3\n' $1 $2 >floor.ply
+	fi
+	sed "s/^quad .*/mesh $f floor/" chk.pms >m.pms
+	pm-render -q -e path -p 1 m.pms -o m.exr
+	check "(u, v) from the mesh file ($uv)" test "$("$tools/exrstat" --pixel 4,4 m.exr | sed -n 's/^mean: //p')" != "$("$tools/exrstat" --pixel 11,4 m.exr | sed -n 's/^mean: //p')"
+done
+
 # An 8-bit image of four quadrants, 2 x 2 texels each (so the quadrants'
 # centres read one value under bilinear filtering): codes 40, 90, 160, 250.
 printf 'P5\n4 4\n255\n' >quads.pgm
