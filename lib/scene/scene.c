@@ -416,7 +416,7 @@ st_material(parser *p)
 	for (int k = 0; k < NW; k++)
 		if ((required[m.kind] >> k & 1) && !(seen >> k & 1))
 			return perr(p, "%s: missing '%s'", stmt, words[k]);
-	if (m.kind == PM_MAT_GLOSSY) {
+	if (m.kind == PM_MAT_GLOSSY && !m.tkd && !m.tks) {
 		pm_vec3 t = pm_add(m.kd, m.ks);
 		if (!(t.x <= 1 && t.y <= 1 && t.z <= 1))
 			return perr(p, "%s: kd + ks exceeds 1 (the surface would create energy)", stmt);
@@ -731,6 +731,36 @@ st_mesh(parser *p)
 	return r;
 }
 
+/* Reads the image file (relative to the scene's directory) for statement
+ * what, every texel times scale, each of which must then be a finite value
+ * >= 0. */
+static int
+image_arg(parser *p, const char *file, float scale, pm_rgbimage *im)
+{
+	size_t len = strlen(p->dir) + strlen(file) + 1;
+	char *path = malloc(len);
+	if (!path)
+		return perr(p, "out of memory");
+	snprintf(path, len, "%s%s", file[0] == '/' ? "" : p->dir, file);
+	if (pm_rgbimage_read(path, im, p->err)) {
+		free(path);
+		return pm_preferr(p->err, "%s:%d", p->path, p->line);
+	}
+	for (size_t i = 0; i < (size_t)im->w * im->h * 3; i++) {
+		float v = im->px[i] * scale;
+		if (!(v >= 0 && v <= 3e38f)) {
+			int r = perr(p, "%s: '%s': texel (%zu, %zu) is %g, not a finite value >= 0", p->stmt,
+			             path, i / 3 % (size_t)im->w, i / 3 / (size_t)im->w, (double)v);
+			free(path);
+			pm_rgbimage_free(im);
+			return r;
+		}
+		im->px[i] = v;
+	}
+	free(path);
+	return 0;
+}
+
 static int
 st_texture(parser *p)
 {
@@ -784,25 +814,9 @@ st_texture(parser *p)
 		}
 	}
 	if (file) {
-		size_t len = strlen(p->dir) + strlen(file) + 1;
-		char *path = malloc(len);
 		pm_rgbimage im;
-		if (!path)
-			return perr(p, "out of memory");
-		snprintf(path, len, "%s%s", file[0] == '/' ? "" : p->dir, file);
-		if (pm_rgbimage_read(path, &im, p->err)) {
-			free(path);
-			return pm_preferr(p->err, "%s:%d", p->path, p->line);
-		}
-		for (size_t i = 0; i < (size_t)im.w * im.h * 3; i++)
-			if (!(im.px[i] >= 0 && im.px[i] <= 3e38f)) {
-				int r = perr(p, "texture: '%s': texel (%zu, %zu) is %g, not a finite value >= 0",
-				             path, i / 3 % (size_t)im.w, i / 3 / (size_t)im.w, (double)im.px[i]);
-				free(path);
-				pm_rgbimage_free(&im);
-				return r;
-			}
-		free(path);
+		if (image_arg(p, file, 1, &im))
+			return -1;
 		t.w = im.w;
 		t.h = im.h;
 		t.px = im.px;
@@ -966,38 +980,6 @@ st_distantlight(parser *p)
 	return 0;
 }
 
-/* The environment map of envlight: read, scaled, and checked. */
-static int
-env_image(parser *p, pm_pointlight *l, const char *file, float scale)
-{
-	size_t len = strlen(p->dir) + strlen(file) + 1;
-	char *path = malloc(len);
-	pm_rgbimage im;
-	if (!path)
-		return perr(p, "out of memory");
-	snprintf(path, len, "%s%s", file[0] == '/' ? "" : p->dir, file);
-	if (pm_rgbimage_read(path, &im, p->err)) {
-		free(path);
-		return pm_preferr(p->err, "%s:%d", p->path, p->line);
-	}
-	for (size_t i = 0; i < (size_t)im.w * im.h * 3; i++) {
-		float v = im.px[i] * scale;
-		if (!(v >= 0 && v <= 3e38f)) {
-			int r = perr(p, "envlight: '%s': texel (%zu, %zu) is %g, not a finite radiance >= 0",
-			             path, i / 3 % (size_t)im.w, i / 3 / (size_t)im.w, (double)v);
-			free(path);
-			pm_rgbimage_free(&im);
-			return r;
-		}
-		im.px[i] = v;
-	}
-	free(path);
-	l->env = im.px;
-	l->env_w = im.w;
-	l->env_h = im.h;
-	return 0;
-}
-
 static int
 st_envlight(parser *p)
 {
@@ -1043,9 +1025,13 @@ st_envlight(parser *p)
 				return perr(p, "envlight: unexpected '%s' (expected scale or rotate)", w);
 			}
 		}
+		pm_rgbimage im;
 		l.power = pm_v3(1, 1, 1);
-		if (env_image(p, &l, file, (float)scale))
+		if (image_arg(p, file, (float)scale, &im))
 			return -1;
+		l.env = im.px;
+		l.env_w = im.w;
+		l.env_h = im.h;
 	} else {
 		return perr(p, "envlight: expected 'radiance' or 'image'");
 	}
