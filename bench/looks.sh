@@ -3,17 +3,18 @@
 # same open scene (a floor, a box and a sphere under a distant light) as it
 # is, with its floor and box textured (a 1024 x 1024 image on the floor, a
 # checkerboard on the box), and with a lat-long sky (512 x 256) added; each
-# pm-render pass (compensated estimate, its own map of PHOTONS photons)
-# timed RUNS times, median seconds and the ratio to the plain scene.
+# pm-render pass (compensated estimate, its own map of PHOTONS photons, one
+# thread) timed RUNS times in rounds of the three, median seconds and the
+# ratio to the plain scene.
 #
 # Usage: bench/looks.sh [BUILD_DIR]   (default build; needs bin/ and
 # tests/tools/mkimg). Environment, with defaults: PHOTONS=100000, SPP=16,
-# RUNS=5, SIZE="160 120". Writes bench/results/looks.tsv.
+# RUNS=7, SIZE="160 120". Writes bench/results/looks.tsv.
 set -eu
 top=$(cd "$(dirname "$0")/.." && pwd)
 B=${1:-build}
 case $B in /*) ;; *) B=$top/$B ;; esac
-PHOTONS=${PHOTONS:-100000} SPP=${SPP:-16} RUNS=${RUNS:-5} SIZE=${SIZE:-160 120}
+PHOTONS=${PHOTONS:-100000} SPP=${SPP:-16} RUNS=${RUNS:-7} SIZE=${SIZE:-160 120}
 bin=$B/bin res=$top/bench/results
 mkimg=$B/tests/tools/mkimg
 for p in "$bin/pm-shoot" "$bin/pm-build" "$bin/pm-render" "$mkimg"; do
@@ -51,13 +52,20 @@ printf 'scene\truns\tmedian_seconds\tratio_to_plain\n' >"$res/looks.tsv"
 median() { sort -g | awk '{ a[NR] = $1 } END { print a[int((NR + 1) / 2)] }'; }
 for s in plain textured sky; do
 	"$bin/pm-shoot" -q -n "$PHOTONS" $s.pms | "$bin/pm-build" -q -o $s.map
-	for r in $(seq "$RUNS"); do
+done
+# Rounds of one pass of each scene, one thread: a change of the machine's
+# load between rounds moves all three alike.
+for r in $(seq "$RUNS"); do
+	for s in plain textured sky; do
 		t0=$(date +%s.%N)
-		"$bin/pm-render" -q -p "$SPP" $s.pms $s.map -o out-$s.exr
+		"$bin/pm-render" -q -j 1 -p "$SPP" $s.pms $s.map -o out-$s.exr
 		t1=$(date +%s.%N)
-		echo "$t1 $t0" | awk '{ print $1 - $2 }'
-	done | median >$s.t
-	base_t=$(cat plain.t)
-	printf '%s\t%s\t%s\t%.3f\n' $s "$RUNS" "$(cat $s.t)" "$(awk -v a="$(cat $s.t)" -v b="$base_t" 'BEGIN { print a / b }')" >>"$res/looks.tsv"
+		echo "$t1 $t0" | awk '{ print $1 - $2 }' >>$s.times
+	done
+done
+base_t=$(median <plain.times)
+for s in plain textured sky; do
+	t=$(median <$s.times)
+	printf '%s\t%s\t%s\t%.3f\n' $s "$RUNS" "$t" "$(awk -v a="$t" -v b="$base_t" 'BEGIN { print a / b }')" >>"$res/looks.tsv"
 done
 cat "$res/looks.tsv"
