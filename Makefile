@@ -165,6 +165,23 @@ torture:
 	@KNOWN=$(KNOWN) sh tests/torture/report.sh $(SCENES) 1 $(TORTURE_OUT)
 .PHONY: torture
 
+# make check-scenes (not part of make check): pm-import on the public scenes
+# of ../shared/scenes, when that directory exists, and pm's path tracer on
+# each against the reference image shipped with it (tests/public/scenes.sh).
+check-scenes: deps
+	@$(MAKE) --no-print-directory $(TOOLS) $(B)/tests/tools/exrblocks
+	@sh tests/public/scenes.sh $(B)
+.PHONY: check-scenes
+
+# make check-blender (as root; not part of make check): Debian's blender,
+# scenes built from bpy primitives, exported by tools/pm-blender.py and
+# rendered by pm (tests/blender/).
+check-blender:
+	@sh mk/deps.sh blender
+	@$(MAKE) --no-print-directory all-tests
+	@PM_SUITE=tests/blender sh tests/run.sh $(B)
+.PHONY: check-blender
+
 # make check-cluster (as root; not part of make check): the SLURM fan-out,
 # examples/fanout/slurm.sh, on a throwaway one-node cluster (tests/cluster/,
 # tests/cluster.sh), at most 15 minutes.

@@ -3,7 +3,7 @@
 # (man -l --warnings, and groff -ww when there), has the sections a page
 # needs, and its SYNOPSIS is the program's usage line word for word.
 . "$PM_TOP/tests/lib.sh"
-progs="pm-shoot pm-build pm-render pm-average pm-dump pm-diff pm-tonemap"
+progs="pm-shoot pm-build pm-render pm-average pm-dump pm-diff pm-tonemap pm-import"
 
 # Install from the source tree into a temporary prefix, with the build dir
 # the test runs on. A make above us must not lend its jobserver or flags.

@@ -5,7 +5,7 @@
 # options that do not change outputs (-q, -j) write the same bytes in any
 # spelling.
 . "$PM_TOP/tests/lib.sh"
-progs="pm-shoot pm-build pm-render pm-average pm-dump pm-diff pm-tonemap"
+progs="pm-shoot pm-build pm-render pm-average pm-dump pm-diff pm-tonemap pm-import"
 
 cat >box.pms <<'SCENE'
 camera eye 0 1 3.4  look 0 1 0  up 0 1 0  fov 45  size 16 12

@@ -1,0 +1,61 @@
+#!/bin/sh
+# scenes.sh — make check-scenes: pm-import on the public scenes of
+# ../shared/scenes (three CC0 scenes of Bitterli's collection, not part of
+# the repository; skipped when absent), pm's path tracer on each imported
+# scene, and its agreement with the reference image shipped beside it,
+# compared at an eighth of the reference's size (the reference box-averaged
+# 8 x 8, pm rendered with its pixel-area samples at that size, so both are
+# averages over the same pixel footprints): the whole-image mean within 3 %,
+# and the 16 x 16 grid of block means within the scene's tolerance:
+#   cornell-box (pbrt and Mitsuba): every material exact (diffuse), so the
+#     blocks differ by noise only (512 samples a pixel: 0.6 % rms, 2.7 % at
+#     most measured): rms <= 2 %, max <= 6 %;
+#   veach-mis: conductors of roughness 0.01-0.25 become Blinn lobes, whose
+#     highlights are narrower in the tails than GGX's (-70 % to +30 % on the
+#     plates' blocks), and the file asks for maxdepth 3 where pm follows
+#     paths further: rms <= 30 %, max <= 80 %;
+#   water-caustic: known failure, reported only: its floor is lit only
+#     through the water by a light of 2e-5 m^2 (no path tracer finds those
+#     caustics in reasonable time) and pm's glass does not rescale radiance
+#     by eta^2 for surfaces inside it.
+# Usage: tests/public/scenes.sh BUILD_DIR
+top=$(cd "$(dirname "$0")/../.." && pwd)
+B=$(cd "$1" && pwd)
+src=${PM_SCENES:-$top/../shared/scenes}
+if [ ! -d "$src" ]; then echo "check-scenes: no $src, skipped"; exit 0; fi
+PATH="$B/bin:$PATH"
+blocks="$B/tests/tools/exrblocks"
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+pass=0 fail=0
+# one NAME INPUT W H SPP RMS MAX [known]
+one() {
+	name=$1 in=$2 w=$3 h=$4 spp=$5 trms=$6 tmax=$7 known=${8:-}
+	ref=$(dirname "$in")/TungstenRender.exr
+	[ -f "$ref" ] || ref=$src/$(echo "$name" | cut -d- -f1-2)/pbrt/TungstenRender.exr
+	if ! pm-import -q "$in" --size "$w" "$h" -o "$work/$name/scene.pms" 2>"$work/err"; then
+		echo "not ok - $name: import failed: $(cat "$work/err")"; fail=$((fail + 1)); return
+	fi
+	start=$(date +%s)
+	pm-render -q -e path -p "$spp" "$work/$name/scene.pms" -o "$work/$name.exr" || {
+		echo "not ok - $name: render failed"; fail=$((fail + 1)); return; }
+	"$blocks" "$work/$name.exr" "$ref" >"$work/$name.txt"
+	kv() { sed -n "s/^$1: //p" "$work/$name.txt"; }
+	ratio=$(kv mean_ratio) rms=$(kv block_rel_rms) max=$(kv block_rel_max)
+	line="$name: ${w}x$h, $spp spp, $(( $(date +%s) - start )) s: mean pm/ref $ratio, blocks rel rms $rms, max $max (at $(kv worst_block))"
+	if awk -v r="$ratio" -v a="$rms" -v m="$max" -v ta="$trms" -v tm="$tmax" \
+		'BEGIN { exit !(r >= 0.97 && r <= 1.03 && a <= ta && m <= tm) }'; then
+		echo "ok - $line"; pass=$((pass + 1))
+	elif [ -n "$known" ]; then
+		echo "known failure - $line ($known)"
+	else
+		echo "not ok - $line (want mean within 3 %, rms <= $trms, max <= $tmax)"; fail=$((fail + 1))
+	fi
+}
+one cornell-box-pbrt "$src/cornell-box/pbrt/scene-v4.pbrt" 128 128 512 0.02 0.06
+one cornell-box-mitsuba "$src/cornell-box/mitsuba/scene_v3.xml" 128 128 512 0.02 0.06
+one veach-mis "$src/veach-mis/pbrt/scene-v4.pbrt" 160 90 256 0.30 0.80
+one water-caustic "$src/water-caustic/pbrt/scene-v4.pbrt" 128 128 256 0.1 0.3 \
+	"caustics through water from a tiny light; pm's glass lacks the eta^2 rescaling inside it"
+echo "check-scenes: $pass passed, $fail failed"
+[ "$fail" -eq 0 ]
