@@ -375,7 +375,7 @@ CURVE_RES=$cres BENCH_CACHE=$cache sh "$top/bench/compcost.sh" "$B" >&2 || log "
 # Each writes its TSVs and plots to bench/results; their prose lives in
 # bench/sections/ (appended to BENCHMARKS.md by report.sh).
 if [ "$mode" = full ]; then
-	for s in consistent ldpaths density gather guide; do
+	for s in consistent ldpaths density gather guide looks; do
 		log "bench/$s.sh"
 		BENCH_CACHE=$cache sh "$top/bench/$s.sh" "$B" >&2 || log "bench/$s.sh failed"
 	done

@@ -89,18 +89,57 @@ pm_limits_material(const pm_material *m, const char *what, pm_error *err)
 	return 0;
 }
 
+static const char *
+light_name(int kind)
+{
+	return kind == PM_LIGHT_SPOT ? "spotlight" : kind == PM_LIGHT_DISTANT ? "distantlight"
+	     : kind == PM_LIGHT_ENV ? "envlight" : "pointlight";
+}
+
+/* What a light's 'power' field holds, by kind: W, W/sr, W/m^2 or W/m^2/sr;
+ * each is bounded by the same 1e30, and by its real power in the total. */
+static const char *
+light_unit(int kind)
+{
+	return kind == PM_LIGHT_SPOT ? "W/sr" : kind == PM_LIGHT_DISTANT ? "W/m^2"
+	     : kind == PM_LIGHT_ENV ? "W/m^2/sr" : "W";
+}
+
+static int
+positional(int kind)
+{
+	return kind == PM_LIGHT_POINT || kind == PM_LIGHT_SPOT;
+}
+
 int
 pm_limits_light(const pm_pointlight *l, pm_error *err)
 {
-	if (point_ok(l->pos, "pointlight", "the position", err))
+	const char *what = light_name(l->kind);
+
+	if (positional(l->kind) && point_ok(l->pos, what, "the position", err))
 		return -1;
 	if (!atmost(pm_maxc(l->power), PM_POWER_MAX))
-		return pm_seterr(err, "pointlight: power %.3g is more than the %g W that pm carries "
-		                 "in float (formats/scene.md, \"Range\")", pm_maxc(l->power), PM_POWER_MAX);
-	if (!vec_ok(pm_add(l->pos, l->motion)) || !vec_ok(l->motion))
-		return pm_seterr(err, "pointlight: 'move' takes it beyond the %g that pm resolves "
-		                 "(formats/scene.md, \"Range\")", PM_COORD_MAX);
+		return pm_seterr(err, "%s: %.3g %s is more than the %g that pm carries "
+		                 "in float (formats/scene.md, \"Range\")", what, pm_maxc(l->power),
+		                 light_unit(l->kind), PM_POWER_MAX);
+	if (positional(l->kind) && (!vec_ok(pm_add(l->pos, l->motion)) || !vec_ok(l->motion)))
+		return pm_seterr(err, "%s: 'move' takes it beyond the %g that pm resolves "
+		                 "(formats/scene.md, \"Range\")", what, PM_COORD_MAX);
 	return 0;
+}
+
+/* The largest texel of an environment image (1 for a constant sky). */
+static double
+env_peak(const pm_pointlight *l)
+{
+	double m = 1;
+
+	if (l->env) {
+		m = 0;
+		for (size_t i = 0; i < (size_t)l->env_w * l->env_h * 3; i++)
+			m = fmax(m, l->env[i]);
+	}
+	return m;
 }
 
 static void
@@ -125,6 +164,8 @@ pm_limits_scene(const pm_scene *s, pm_error *err)
 		}
 	}
 	for (int i = 0; i < s->nlights; i++) {
+		if (!positional(s->lights[i].kind))
+			continue;
 		grow_box(lo, hi, s->lights[i].pos);
 		grow_box(lo, hi, pm_add(s->lights[i].pos, s->lights[i].motion));
 	}
@@ -134,16 +175,23 @@ pm_limits_scene(const pm_scene *s, pm_error *err)
 	if (s->nverts > 0 && !atleast(d, PM_EXTENT_MIN))
 		return pm_seterr(err, "the scene is %.3g across, less than the %g that pm resolves "
 		                 "(scale it up; formats/scene.md, \"Range\")", d, PM_EXTENT_MIN);
-	/* Power against the extent: a point light's, and the whole scene's. */
-	double d2 = d * d, total[3] = {0, 0, 0};
+	/* Power against the extent: a point or spot light's, and the whole
+	 * scene's. A spot light emits at most 4 pi times its intensity; the sun
+	 * and the sky reach the scene through a disk of its bounding sphere's
+	 * radius r: E pi r^2 and L pi^2 r^2 (times the image's largest texel). */
+	double d2 = d * d, r2 = 0.75 * d2, total[3] = {0, 0, 0};
 	for (int i = 0; i < s->nlights; i++) {
-		pm_vec3 pw = s->lights[i].power;
+		const pm_pointlight *l = &s->lights[i];
+		double f = l->kind == PM_LIGHT_SPOT ? 4 * PM_PI
+		         : l->kind == PM_LIGHT_DISTANT ? PM_PI * r2
+		         : l->kind == PM_LIGHT_ENV ? PM_PI * PM_PI * r2 * env_peak(l) : 1;
+		pm_vec3 pw = l->power;
 		/* (with no geometry, nothing is lit) */
-		if (s->nverts > 0 && !atmost(pm_maxc(pw), PM_RADIANCE_MAX * d2))
-			return pm_seterr(err, "pointlight %d of the file: power %.3g is more than %g times "
+		if (positional(l->kind) && s->nverts > 0 && !atmost(f * pm_maxc(pw), PM_RADIANCE_MAX * d2))
+			return pm_seterr(err, "%s %d of the file: power %.3g is more than %g times "
 			                 "the scene's extent squared (%.3g across; formats/scene.md, \"Range\")",
-			                 i + 1, pm_maxc(pw), PM_RADIANCE_MAX, d);
-		total[0] += pw.x, total[1] += pw.y, total[2] += pw.z;
+			                 light_name(l->kind), i + 1, f * pm_maxc(pw), PM_RADIANCE_MAX, d);
+		total[0] += f * pw.x, total[1] += f * pw.y, total[2] += f * pw.z;
 	}
 	for (uint32_t t = 0; t < s->ntris; t++) {
 		const pm_material *m = &s->mats[s->objs[s->poly_obj[s->tri_poly[t]]].material];
