@@ -105,6 +105,13 @@ light_unit(int kind)
 	     : kind == PM_LIGHT_ENV ? "W/m^2/sr" : "W";
 }
 
+static const char *
+light_quantity(int kind)
+{
+	return kind == PM_LIGHT_SPOT ? "intensity" : kind == PM_LIGHT_DISTANT ? "irradiance"
+	     : kind == PM_LIGHT_ENV ? "radiance" : "power";
+}
+
 static int
 positional(int kind)
 {
@@ -119,8 +126,9 @@ pm_limits_light(const pm_pointlight *l, pm_error *err)
 	if (positional(l->kind) && point_ok(l->pos, what, "the position", err))
 		return -1;
 	if (!atmost(pm_maxc(l->power), PM_POWER_MAX))
-		return pm_seterr(err, "%s: %.3g %s is more than the %g that pm carries "
-		                 "in float (formats/scene.md, \"Range\")", what, pm_maxc(l->power),
+		return pm_seterr(err, "%s: %s %.3g %s is more than the %g that pm carries "
+		                 "in float (formats/scene.md, \"Range\")", what,
+		                 light_quantity(l->kind), pm_maxc(l->power),
 		                 light_unit(l->kind), PM_POWER_MAX);
 	if (positional(l->kind) && (!vec_ok(pm_add(l->pos, l->motion)) || !vec_ok(l->motion)))
 		return pm_seterr(err, "%s: 'move' takes it beyond the %g that pm resolves "
