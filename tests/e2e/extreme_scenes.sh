@@ -51,6 +51,13 @@ room 0.01 1e27 '' >power2.pms
 expect_fail "a point light over 1e30 W per extent squared: refused" 1 \
 	'^pm-shoot: power2.pms:7: pointlight 1 of the file: power 1e+27 is more than 1e+30 times' \
 	pm-shoot -q -n 100 power2.pms -o out.pm
+# Distant and environment lights: bounded in their own units and counted in the total by what they send through the scene's disk.
+room 1 10 'distantlight dir 0 -1 0 irradiance 1e31 1e31 1e31' >sun.pms
+expect_fail "a distant light over 1e30 W/m^2: refused at its line" 1 \
+	'^pm-shoot: sun.pms:7: distantlight: irradiance 1e+31 W/m^2' pm-shoot -q -n 100 sun.pms -o out.pm
+room 1 10 'distantlight dir 0 -1 0 irradiance 2e29 2e29 2e29' >sun2.pms
+expect_fail "a sun of 2e29 W/m^2 on a room 2 across (E pi r^2 = 1.9e30 W): over 1e30 W in all" 1 \
+	'^pm-shoot: sun2.pms:7: the lights emit .* more than' pm-shoot -q -n 100 sun2.pms -o out.pm
 room 1 10 'material hot diffuse albedo 0.5 0.5 0.5 emit 1e31 0 0' >emit.pms
 expect_fail "emit over 1e30: refused at the material" 1 "^pm-shoot: emit.pms:7: material 'hot': emit 1e+31" \
 	pm-shoot -q -n 100 emit.pms -o out.pm
