@@ -363,7 +363,7 @@ lever room "-p 64 -l 4" 100000 "-p 64 -l 4"
 # Each writes its TSVs and plots to bench/results; their prose lives in
 # bench/sections/ (appended to BENCHMARKS.md by report.sh).
 if [ "$mode" = full ]; then
-	for s in consistent ldpaths density gather guide; do
+	for s in consistent ldpaths density gather guide looks; do
 		log "bench/$s.sh"
 		BENCH_CACHE=$cache sh "$top/bench/$s.sh" "$B" >&2 || log "bench/$s.sh failed"
 	done

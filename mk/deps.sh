@@ -1,7 +1,7 @@
 #!/bin/sh
 # deps.sh — make sure the Debian packages pm builds and tests with are here.
 # As root, installs what is missing; otherwise prints the apt-get line.
-pkgs="build-essential pkg-config libopenexr-dev libopenmesh-dev libembree-dev libpng-dev libexpat1-dev zlib1g-dev parallel"
+pkgs="build-essential pkg-config libopenexr-dev libopenmesh-dev libembree-dev libpng-dev libexpat1-dev zlib1g-dev libopenimageio-dev parallel"
 # The tests also render the man pages (man-db, groff-base) and run programs
 # on a pty (script, from bsdutils).
 pkgs="$pkgs man-db groff-base bsdutils"

@@ -115,15 +115,60 @@ int
 pm_bsdf_sample_u(const pm_material *m, pm_vec3 ng, pm_vec3 wo, float u1, float u2, float u3,
                  pm_scatter *s)
 {
+	return pm_bsdf_sample_n(m, ng, pm_dot(wo, ng) >= 0 ? ng : pm_neg(ng), wo, u1, u2, u3, s);
+}
+
+int
+pm_bsdf_sample_rn(const pm_material *m, pm_vec3 ng, pm_vec3 n, pm_vec3 wo, pm_rng *r, pm_scatter *s)
+{
+	float u1 = pm_rng_f(r), u2 = pm_rng_f(r), u3 = pm_rng_f(r);
+
+	return pm_bsdf_sample_n(m, ng, n, wo, u1, u2, u3, s);
+}
+
+pm_vec3
+pm_shading_side(pm_vec3 ng, pm_vec3 ns, pm_vec3 wo)
+{
+	float co = pm_dot(wo, ng), c;
+	pm_vec3 n = co >= 0 ? ns : pm_neg(ns);
+
+	if (ns.x == ng.x && ns.y == ng.y && ns.z == ng.z)
+		return n;
+	/* wo at or below the shading hemisphere of a facet it sees from the
+	 * front (a facet near the silhouette): bent toward wo until wo is
+	 * just above it, so that the facet is not black there. */
+	c = pm_dot(wo, n);
+	if (c < PM_SHADING_MIN_COS)
+		n = pm_norm(pm_add(n, pm_scale(wo, PM_SHADING_MIN_COS - c)));
+	return n;
+}
+
+/* 1 if wi leaves on the side the sample must take: wo's for a reflection,
+ * the other for a refraction, by the facet's normal. A shading normal can
+ * send a sample through the facet; it is then absorbed. */
+static int
+geometric_side(pm_vec3 ng, pm_vec3 wo, pm_vec3 wi, int refracted)
+{
+	float a = pm_dot(wi, ng) * pm_dot(wo, ng);
+
+	return refracted ? a < 0 : a > 0;
+}
+
+int
+pm_bsdf_sample_n(const pm_material *m, pm_vec3 ng, pm_vec3 n, pm_vec3 wo, float u1, float u2,
+                 float u3, pm_scatter *s)
+{
 	float co = pm_dot(wo, ng);
-	pm_vec3 n = co >= 0 ? ng : pm_neg(ng);
+	/* Whether n is the facet's own normal: then the facet's side tests
+	 * below are the shading normal's, and are skipped. */
+	int shaded = !((n.x == ng.x && n.y == ng.y && n.z == ng.z) || (n.x == -ng.x && n.y == -ng.y && n.z == -ng.z));
 
 	s->delta = 0;
 	s->pdf = 0;
 	switch (m->kind) {
 	case PM_MAT_DIFFUSE:
 		s->wi = pm_sample_cosine(n, u1, u2);
-		if (pm_dot(s->wi, n) <= 0)
+		if (pm_dot(s->wi, n) <= 0 || (shaded && !geometric_side(ng, wo, s->wi, 0)))
 			return -1;
 		s->weight = m->kd;     /* (kd/pi) cos / (cos/pi) */
 		s->pdf = pm_dot(s->wi, n) / (float)PM_PI;
@@ -141,7 +186,7 @@ pm_bsdf_sample_u(const pm_material *m, pm_vec3 ng, pm_vec3 wo, float u1, float u
 			s->wi = pm_norm(reflect(wo, h));
 		}
 		ci = pm_dot(s->wi, n);
-		if (ci <= 0)
+		if (ci <= 0 || (shaded && !geometric_side(ng, wo, s->wi, 0)))
 			return -1;
 		pdf = glossy_pdf(m, n, s->wi, wo);
 		if (!(pdf > 0))
@@ -154,9 +199,9 @@ pm_bsdf_sample_u(const pm_material *m, pm_vec3 ng, pm_vec3 wo, float u1, float u
 		s->wi = reflect(wo, n);
 		s->weight = m->ks;
 		s->delta = 1;
-		return 0;
+		return shaded && !geometric_side(ng, wo, s->wi, 0) ? -1 : 0;
 	case PM_MAT_GLASS: {
-		float ci = fabsf(co), ct;
+		float ci = shaded ? fmaxf(pm_dot(wo, n), 0.0f) : fabsf(co), ct;
 		float eta = co >= 0 ? 1.0f / m->ior : m->ior;   /* eta_i / eta_t */
 		float F = fresnel(ci, eta, &ct);
 		s->delta = 1;
@@ -170,7 +215,7 @@ pm_bsdf_sample_u(const pm_material *m, pm_vec3 ng, pm_vec3 wo, float u1, float u
 			s->wi = pm_norm(pm_add(pm_scale(wo, -eta), pm_scale(n, eta * ci - ct)));
 			s->weight = m->ks;
 		}
-		return 0;
+		return shaded && !geometric_side(ng, wo, s->wi, u1 >= F) ? -1 : 0;
 	}
 	}
 	return -1;

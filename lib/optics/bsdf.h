@@ -33,6 +33,23 @@ int pm_bsdf_sample(const pm_material *m, pm_vec3 ng, pm_vec3 wo, pm_rng *r,
 int pm_bsdf_sample_u(const pm_material *m, pm_vec3 ng, pm_vec3 wo, float u1, float u2,
                      float u3, pm_scatter *s);
 
+/* The same about the shading normal n, on wo's side (pm_shading_side): a
+ * sample that n sends through the facet (ng) is absorbed (returns -1). With
+ * n the facet's own normal, exactly pm_bsdf_sample_u. */
+int pm_bsdf_sample_n(const pm_material *m, pm_vec3 ng, pm_vec3 n, pm_vec3 wo, float u1, float u2,
+                     float u3, pm_scatter *s);
+/* pm_bsdf_sample_n drawing u1, u2, u3 from r in that order. */
+int pm_bsdf_sample_rn(const pm_material *m, pm_vec3 ng, pm_vec3 n, pm_vec3 wo, pm_rng *r,
+                      pm_scatter *s);
+
+/* The shading normal to use at a point seen (or left) along wo: ns (the
+ * front shading normal, pm_hit_shading) turned to wo's side of the facet
+ * (front normal ng), and, where wo lies below it although above the
+ * facet, bent toward wo so that wo is PM_SHADING_MIN_COS above it. ns equal
+ * to ng gives ng on wo's side, unbent. */
+#define PM_SHADING_MIN_COS 0.01f
+pm_vec3 pm_shading_side(pm_vec3 ng, pm_vec3 ns, pm_vec3 wo);
+
 /* Solid-angle density with which pm_bsdf_sample picks wi given wo, for
  * multiple importance sampling (0 for mirror and glass). n on wo's side. */
 float pm_bsdf_pdf(const pm_material *m, pm_vec3 n, pm_vec3 wi, pm_vec3 wo);

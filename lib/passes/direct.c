@@ -51,14 +51,28 @@ pm_direct_light(const pm_direct *c, pm_vec3 x, pm_vec3 ng, pm_vec3 n, pm_vec3 wo
 		if (!pm_lights_sample_u(c->L, x, u0, u1, u2, &wi, &dist, &li, &lpdf))
 			continue;
 		cosx = pm_dot(wi, n);
-		if (cosx <= 0)
+		/* Below the facet, whatever the shading normal says: the
+		 * surface itself is in the way. */
+		if (cosx <= 0 || pm_dot(wi, ng) * pm_dot(wo, ng) <= 0)
 			continue;
 		f = pm_bsdf_eval(m, n, wi, wo);
 		if (pm_maxc(f) <= 0)
 			continue;
-		pm_vec3 o = pm_accel_offset(c->a, x, ng, wi), lp = pm_add(x, pm_scale(wi, dist));
-		if (light_blocked(c, o, wi, pm_len(pm_sub(lp, o)), lp))
-			continue;
+		pm_vec3 o = pm_accel_offset(c->a, x, ng, wi);
+		if (isinf(dist)) {
+			if (pm_accel_occluded(c->a, o, wi, 0.0f, FLT_MAX))
+				continue;
+		} else {
+			/* Aimed from the offset origin at the light point: along
+			 * wi from o, a ray grazing the light's surface (the rim of
+			 * a sphere lamp) met it short of the point and the sample
+			 * counted as shadowed (a sphere lamp's floor read 2 %
+			 * dark). */
+			pm_vec3 lp = pm_add(x, pm_scale(wi, dist)), v = pm_sub(lp, o);
+			float dl = pm_len(v);
+			if (!(dl > 0) || light_blocked(c, o, pm_scale(v, 1.0f / dl), dl, lp))
+				continue;
+		}
 		w = lpdf > 0 ? mis((float)nl * lpdf, pm_guide_mix_pdf(gd, m, n, wi, wo)) : 1.0f;
 		sum = pm_add(sum, pm_scale(pm_mul(f, li), cosx * w));
 	}
@@ -88,6 +102,35 @@ pm_direct_emitted(const pm_direct *c, const pm_hit *h, pm_vec3 x, pm_vec3 d, flo
 	if (delta || pm_maxc(e) <= 0)
 		return e;
 	return pm_scale(e, mis(bpdf, (float)nl * pm_lights_pdf(c->L, h->tri, x, h->p)));
+}
+
+pm_vec3
+pm_direct_escaped(const pm_direct *c, pm_vec3 d, float bpdf, int delta, int nl)
+{
+	float lpdf;
+	pm_vec3 e = pm_lights_env(c->L, d, &lpdf);
+
+	if (delta || pm_maxc(e) <= 0)
+		return e;
+	return pm_scale(e, mis(bpdf, (float)nl * lpdf));
+}
+
+pm_vec3
+pm_direct_bsdf_light(const pm_direct *c, pm_vec3 x, pm_vec3 ng, const pm_scatter *bs, int nl)
+{
+	pm_hit h;
+
+	if (!(bs->pdf > 0))
+		return pm_v3(0, 0, 0);
+	if (c->L->env >= 0) {
+		/* A sky: what the sample misses matters too. */
+		pm_vec3 o = pm_accel_offset(c->a, x, ng, bs->wi);
+		if (!pm_accel_hit(c->a, o, bs->wi, 0.0f, FLT_MAX, &h))
+			return pm_mul(bs->weight, pm_direct_escaped(c, bs->wi, bs->pdf, 0, nl));
+	} else if (!pm_direct_bsdf_hit(c, x, ng, bs->wi, &h)) {
+		return pm_v3(0, 0, 0);
+	}
+	return pm_mul(bs->weight, pm_direct_emitted(c, &h, x, bs->wi, bs->pdf, 0, nl));
 }
 
 /* What a BSDF sample from x along wi reaches, when only an emitter there

@@ -8,6 +8,7 @@
 #define PM_DIRECT_H
 
 #include "scene/accel.h"
+#include "optics/bsdf.h"
 #include "estimators/guide.h"
 #include "optics/light.h"
 #include "base/rng.h"
@@ -37,5 +38,15 @@ int pm_direct_bsdf_hit(const pm_direct *c, pm_vec3 x, pm_vec3 ng, pm_vec3 wi, pm
  * x; all of it when the sample was a delta. */
 pm_vec3 pm_direct_emitted(const pm_direct *c, const pm_hit *h, pm_vec3 x, pm_vec3 d, float bpdf,
                           int delta, int nl);
+
+/* The sky's radiance along a ray from a scattering point that left the
+ * scene along d (a BSDF sample of density bpdf), weighted against the nl
+ * light samples taken there; all of it after a delta (or the camera). */
+pm_vec3 pm_direct_escaped(const pm_direct *c, pm_vec3 d, float bpdf, int delta, int nl);
+
+/* The BSDF-sampled half of direct light at x: bs's weight times what its
+ * ray finds (an emitter, or the sky if it leaves the scene), weighted
+ * against the nl light samples taken at x. 0 if bs was absorbed (pdf <= 0). */
+pm_vec3 pm_direct_bsdf_light(const pm_direct *c, pm_vec3 x, pm_vec3 ng, const pm_scatter *bs, int nl);
 
 #endif

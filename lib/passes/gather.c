@@ -35,11 +35,9 @@ direct_at(const pm_gather *g, const pm_hit *y, pm_vec3 n, pm_vec3 wo, const pm_m
 	pm_direct dl = {g->s, g->a, g->L};
 	pm_vec3 sum = pm_direct_light(&dl, y->p, y->ng, n, wo, m, 1, NULL, r);
 	pm_scatter bs;
-	pm_hit e;
 
-	if (pm_bsdf_sample(m, y->ng, wo, r, &bs) == 0 && bs.pdf > 0 &&
-	    pm_direct_bsdf_hit(&dl, y->p, y->ng, bs.wi, &e))
-		sum = pm_add(sum, pm_mul(bs.weight, pm_direct_emitted(&dl, &e, y->p, bs.wi, bs.pdf, 0, 1)));
+	if (pm_bsdf_sample(m, y->ng, wo, r, &bs) == 0)
+		sum = pm_add(sum, pm_direct_bsdf_light(&dl, y->p, y->ng, &bs, 1));
 	return sum;
 }
 
@@ -70,13 +68,18 @@ gather_ray(const pm_gather *g, void *sc, pm_rng *r, pm_vec3 x, pm_vec3 ng, const
 
 	for (int depth = 0; depth < GATHER_DEPTH; depth++) {
 		const pm_material *m;
+		pm_material mt;     /* m with its textures looked up, if it has any */
 		pm_vec3 wo = pm_neg(d), n;
 		pm_scatter bs;
 		pm_hit h;
 
-		if (!pm_accel_hit(g->a, o, d, 0.0f, FLT_MAX, &h))
+		if (!pm_accel_hit(g->a, o, d, 0.0f, FLT_MAX, &h)) {
+			float pdf;
+			if (depth > 0 && !g->o->caustic)     /* the sky, as an emitter */
+				acc = pm_add(acc, pm_mul(beta, pm_lights_env(g->L, d, &pdf)));
 			return acc;
-		m = &g->s->mats[g->s->objs[h.obj].material];
+		}
+		m = pm_hit_material(g->s, &h, &mt);
 		n = pm_dot(h.ng, wo) >= 0 ? h.ng : pm_neg(h.ng);
 		if (depth > 0 && !g->o->caustic && pm_maxc(m->emit) > 0 &&
 		    (pm_dot(h.ng, wo) > 0 || m->emit_twosided))

@@ -133,17 +133,25 @@ walk(const ctx *c, void *sc, pm_vec3 o, pm_vec3 d, int depth, pm_vec3 beta, pm_v
 
 	for (; depth < maxd; depth++) {
 		const pm_material *m;
-		pm_vec3 wo = pm_neg(d), n;
+		pm_material mt;     /* m with its textures looked up, if it has any */
+		pm_vec3 wo = pm_neg(d), n, nf;
 		pm_vec3 *here;
 		pm_scatter bs;
 		pm_guide gd;
 		const pm_guide *g = NULL;
 		int ends, nl;
 
-		if (!pm_accel_hit(c->a, o, d, 0.0f, FLT_MAX, &h))
+		if (!pm_accel_hit(c->a, o, d, 0.0f, FLT_MAX, &h)) {
+			pm_vec3 *sky = depth == 0 ? &out->direct : bucket;
+			*sky = pm_add(*sky, pm_mul(beta, pm_direct_escaped(&c->dl, d, bpdf, delta, nlprev)));
 			return;
-		m = &c->s->mats[c->s->objs[h.obj].material];
-		n = pm_dot(h.ng, wo) >= 0 ? h.ng : pm_neg(h.ng);
+		}
+		m = pm_hit_material(c->s, &h, &mt);
+		/* nf: the facet's normal on wo's side, for the estimate (whose
+		 * clipping and target areas are the facets'); n: the shading
+		 * normal there, for direct light and the BSDF (README). */
+		nf = pm_dot(h.ng, wo) >= 0 ? h.ng : pm_neg(h.ng);
+		n = pm_shading_side(h.ng, pm_hit_shading(c->s, &h), wo);
 		if (depth == 0)
 			bucket = pm_mat_is_photon_surface(m) ? &out->indirect : &out->specular;
 		here = depth == 0 ? (m->strong ? &out->specular : &out->direct) : bucket;
@@ -166,19 +174,16 @@ walk(const ctx *c, void *sc, pm_vec3 o, pm_vec3 d, int depth, pm_vec3 beta, pm_v
 		}
 		if (m->kind == PM_MAT_DIFFUSE || m->kind == PM_MAT_GLOSSY)
 			*here = pm_add(*here, pm_mul(beta, pm_direct_light(&c->dl, h.p, h.ng, n, wo, m, nl, g, r)));
-		if ((g ? pm_guide_mix(g, m, h.ng, n, wo, r, &bs) : pm_bsdf_sample(m, h.ng, wo, r, &bs)) != 0)
+		if ((g ? pm_guide_mix(g, m, h.ng, n, wo, r, &bs) : pm_bsdf_sample_rn(m, h.ng, n, wo, r, &bs)) != 0)
 			bs.pdf = -1;
 		if (ends) {
 			pm_estimate_info info;
 			pm_vec3 L;
-			pm_hit lh;
 			/* The BSDF-sampled half of the direct light. */
-			if (bs.pdf > 0 && pm_direct_bsdf_hit(&c->dl, h.p, h.ng, bs.wi, &lh))
-				*here = pm_add(*here, pm_mul(pm_mul(beta, bs.weight),
-				                             pm_direct_emitted(&c->dl, &lh, h.p, bs.wi, bs.pdf, 0, nl)));
+			*here = pm_add(*here, pm_mul(beta, pm_direct_bsdf_light(&c->dl, h.p, h.ng, &bs, nl)));
 			/* Gathering draws its own rays: one gather per camera sample. */
-			L = c->o->gather ? pm_gather_radiance(&c->gather, sc, r, h.p, h.ng, n, wo, m, &info)
-			                 : first_estimate(c, sc, &h, n, wo, m,
+			L = c->o->gather ? pm_gather_radiance(&c->gather, sc, r, h.p, h.ng, nf, wo, m, &info)
+			                 : first_estimate(c, sc, &h, nf, wo, m,
 			                                  depth == 0 && c->o->estimate_once ? pc : NULL, &info);
 			*bucket = pm_add(*bucket, pm_mul(beta, L));
 			if (depth == 0) {

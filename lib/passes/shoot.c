@@ -2,6 +2,7 @@
 #include "passes/shoot.h"
 
 #include <float.h>
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -88,13 +89,14 @@ trace_path(const pm_scene *s, const pm_accel *a, const pm_lights *L, const pm_sh
 		org = pm_accel_offset(a, org, n, d);
 	for (int bounce = 0; bounce < maxb; bounce++) {
 		const pm_material *m;
+		pm_material mt;     /* m with its textures looked up, if it has any */
 		pm_vec3 wo = pm_neg(d);
 		pm_scatter sc;
 		float q, u[4];
 
 		if (!pm_accel_hit(a, org, d, 0.0f, FLT_MAX, &h))
 			return;
-		m = &s->mats[s->objs[h.obj].material];
+		m = pm_hit_material(s, &h, &mt);
 		/* After the first bounce a hit is kept: in the global (and the
 		 * caustic) map where view paths end, in the guide map where they
 		 * go on by sampling a lobe, not a delta (strong glossy; guide.h). */
@@ -119,8 +121,24 @@ trace_path(const pm_scene *s, const pm_accel *a, const pm_lights *L, const pm_sh
 			for (int i = 0; i < 4; i++)
 				u[i] = pm_rng_f(&r);
 		}
-		if (pm_bsdf_sample_u(m, h.ng, wo, u[0], u[1], u[2], &sc) != 0)
-			return;
+		pm_vec3 ns = pm_hit_shading(s, &h);
+		if (ns.x == h.ng.x && ns.y == h.ng.y && ns.z == h.ng.z) {
+			if (pm_bsdf_sample_u(m, h.ng, wo, u[0], u[1], u[2], &sc) != 0)
+				return;
+		} else {
+			/* About the shading normal, with the adjoint's correction
+			 * (Veach 1997, eq. 5.19): flux arrives per unit of facet
+			 * area, |wo.ng|, and leaves through it, |wi.ng|, while the
+			 * BSDF's cosines are the shading normal's. */
+			pm_vec3 n = pm_shading_side(h.ng, ns, wo);
+			if (pm_bsdf_sample_n(m, h.ng, n, wo, u[0], u[1], u[2], &sc) != 0)
+				return;
+			float c = fabsf(pm_dot(wo, n)) * fabsf(pm_dot(sc.wi, h.ng))
+			        / (fabsf(pm_dot(wo, h.ng)) * fabsf(pm_dot(sc.wi, n)));
+			if (!(c < INFINITY))
+				return;
+			sc.weight = pm_scale(sc.weight, c);
+		}
 		q = fminf(1.0f, pm_maxc(sc.weight));
 		if (!(q > 0) || u[3] >= q)
 			return;

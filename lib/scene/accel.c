@@ -132,6 +132,8 @@ pm_accel_hit(const pm_accel *a, pm_vec3 o, pm_vec3 d, float tmin, float tmax, pm
 	h->poly = a->s->tri_poly[h->tri];
 	h->ng = a->s->poly_normal[h->poly];
 	h->obj = (int)a->s->poly_obj[h->poly];
+	h->u = rh.hit.u;
+	h->v = rh.hit.v;
 	return 1;
 }
 
@@ -161,4 +163,90 @@ pm_accel_offset(const pm_accel *a, pm_vec3 p, pm_vec3 ng, pm_vec3 d)
 {
 	float eps = pm_accel_eps(a, p);
 	return pm_add(p, pm_scale(ng, pm_dot(ng, d) >= 0 ? eps : -eps));
+}
+
+pm_vec3
+pm_hit_shading(const pm_scene *s, const pm_hit *h)
+{
+	const uint32_t *t;
+	pm_vec3 n;
+
+	if (!s->vnormal || !s->objs[h->obj].smooth)
+		return h->ng;
+	t = s->tris[h->tri];
+	n = pm_add(pm_add(pm_scale(s->vnormal[t[0]], 1.0f - h->u - h->v), pm_scale(s->vnormal[t[1]], h->u)),
+	           pm_scale(s->vnormal[t[2]], h->v));
+	float l = pm_len(n);
+	if (!(l > 0) || !(pm_dot(n, h->ng) > 0))
+		return h->ng;
+	return pm_scale(n, 1.0f / l);
+}
+
+static const float *
+texel(const pm_texture *t, int x, int y)
+{
+	x %= t->w;
+	y %= t->h;
+	x += x < 0 ? t->w : 0;
+	y += y < 0 ? t->h : 0;
+	return t->px + 3 * ((size_t)y * t->w + x);
+}
+
+pm_vec3
+pm_texture_at(const pm_texture *t, float u, float v)
+{
+	u = u * t->su + t->ou;
+	v = v * t->sv + t->ov;
+	if (!(fabsf(u) < 1e7f && fabsf(v) < 1e7f))
+		u = v = 0;
+	if (t->kind == PM_TEX_CHECKER)
+		return ((long)floorf(u) + (long)floorf(v)) % 2 == 0 ? t->c1 : t->c2;
+	/* Texel centres at half-integers: (x + 0.5) / w. */
+	float fx = u * (float)t->w - 0.5f, fy = (1.0f - v) * (float)t->h - 0.5f;
+	float x0 = floorf(fx), y0 = floorf(fy), ax = fx - x0, ay = fy - y0;
+	int ix = (int)fmodf(x0, (float)t->w), iy = (int)fmodf(y0, (float)t->h);
+	const float *a = texel(t, ix, iy), *b = texel(t, ix + 1, iy);
+	const float *c = texel(t, ix, iy + 1), *d = texel(t, ix + 1, iy + 1);
+	float r[3];
+	for (int k = 0; k < 3; k++)
+		r[k] = (1 - ay) * ((1 - ax) * a[k] + ax * b[k]) + ay * ((1 - ax) * c[k] + ax * d[k]);
+	return pm_v3(r[0], r[1], r[2]);
+}
+
+static pm_vec3
+clamp01(pm_vec3 a)
+{
+	return pm_v3(fminf(fmaxf(a.x, 0.0f), 1.0f), fminf(fmaxf(a.y, 0.0f), 1.0f), fminf(fmaxf(a.z, 0.0f), 1.0f));
+}
+
+const pm_material *
+pm_hit_material(const pm_scene *s, const pm_hit *h, pm_material *tmp)
+{
+	const pm_material *m = &s->mats[s->objs[h->obj].material];
+	float u = 0, v = 0;
+
+	if (!(m->tkd | m->tks | m->texp))
+		return m;
+	if (s->vuv && s->objs[h->obj].has_uv) {
+		const uint32_t *t = s->tris[h->tri];
+		float w0 = 1.0f - h->u - h->v;
+		u = w0 * s->vuv[t[0]][0] + h->u * s->vuv[t[1]][0] + h->v * s->vuv[t[2]][0];
+		v = w0 * s->vuv[t[0]][1] + h->u * s->vuv[t[1]][1] + h->v * s->vuv[t[2]][1];
+	}
+	*tmp = *m;
+	if (m->tkd)
+		tmp->kd = clamp01(pm_texture_at(&s->texs[m->tkd - 1], u, v));
+	if (m->tks)
+		tmp->ks = clamp01(pm_texture_at(&s->texs[m->tks - 1], u, v));
+	if (m->texp)
+		tmp->exponent = fmaxf(pm_lum(pm_texture_at(&s->texs[m->texp - 1], u, v)), 1e-3f);
+	if (m->kind == PM_MAT_GLOSSY) {
+		float sc[3] = {tmp->kd.x + tmp->ks.x, tmp->kd.y + tmp->ks.y, tmp->kd.z + tmp->ks.z};
+		float f[3];
+		for (int k = 0; k < 3; k++)
+			f[k] = sc[k] > 1 ? 1 / sc[k] : 1;
+		tmp->kd = pm_mul(tmp->kd, pm_v3(f[0], f[1], f[2]));
+		tmp->ks = pm_mul(tmp->ks, pm_v3(f[0], f[1], f[2]));
+	}
+	return tmp;
 }

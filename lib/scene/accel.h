@@ -19,7 +19,24 @@ typedef struct pm_hit {
 	pm_vec3 ng;         /* unit geometric front normal of the polygon hit */
 	uint32_t tri, poly; /* triangle and polygon index */
 	int obj;            /* object index */
+	float u, v;         /* barycentrics: p = (1-u-v) t0 + u t1 + v t2 of tris[tri] */
 } pm_hit;
+
+/* The shading normal at h, toward the front: its vertices' normals
+ * interpolated (scene.h, vnormal) if its object is smooth, else h->ng; ng
+ * too where the interpolation fails or faces away from ng. */
+pm_vec3 pm_hit_shading(const pm_scene *s, const pm_hit *h);
+
+/* The material at h: its object's, or, where that material has textures,
+ * a copy in *tmp with them looked up at h's texture coordinates (its
+ * vertices' (u, v) interpolated; (0, 0) for an object without).
+ * Reflectances are clamped to [0, 1], and a glossy kd + ks above 1 in a
+ * channel scaled down to 1, so no texel makes energy. */
+const pm_material *pm_hit_material(const pm_scene *s, const pm_hit *h, pm_material *tmp);
+
+/* A texture's value at (u, v) (formats/scene.md): bilinear between texels
+ * of an image repeated in u and v, v = 0 its bottom row. */
+pm_vec3 pm_texture_at(const pm_texture *t, float u, float v);
 
 /* verts: positions at the pass's time (pm_scene_verts_at); copied. */
 int pm_accel_build(pm_accel **out, const pm_scene *s, const pm_vec3 *verts, pm_error *err);

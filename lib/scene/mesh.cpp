@@ -12,7 +12,9 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <fstream>
 #include <new>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -155,6 +157,36 @@ std::string extension(const char *path)
 // the PLY grammar (Turk 1994, "The PLY Polygon File Format"): magic, one
 // format line, elements with counts the file could hold, typed properties,
 // end_header within 64 KiB. Returns NULL if it is sound, else the problem.
+// OpenMesh reads a PLY's texture coordinates as u v or s t only; files
+// also name them texture_u texture_v or texture_s texture_t (as pbrt-v4
+// reads them). If the header does, *data gets the file with those names
+// shortened in its header, and the result is true.
+bool ply_texture_names(const char *path, std::string &data)
+{
+	std::ifstream f(path, std::ios::binary);
+	std::ostringstream all;
+	all << f.rdbuf();
+	data = all.str();
+	size_t end = data.find("end_header");
+	if (!f || end == std::string::npos)
+		return false;
+	bool changed = false;
+	static const char *const from[] = {"property float texture_u", "property float texture_v",
+		"property float texture_s", "property float texture_t",
+		"property double texture_u", "property double texture_v",
+		"property double texture_s", "property double texture_t"};
+	for (const char *k : from) {
+		size_t at = data.find(k);
+		if (at != std::string::npos && at < end) {
+			size_t name = data.find("texture_", at);
+			data.erase(name, 8);
+			end -= 8;
+			changed = true;
+		}
+	}
+	return changed;
+}
+
 const char *ply_header_problem(const char *path, unsigned long long fsize)
 {
 	static const char *const types[] = {"char", "uchar", "short", "ushort", "int", "uint",
@@ -341,9 +373,19 @@ int read(const char *path, pm_meshdata *out, pm_error *err)
 
 	Mesh mesh;
 	Importer imp(mesh, (unsigned long long)st.st_size);
-	OpenMesh::IO::Options opt;
+	// Vertex normals are read when the file has them (OBJ vn, PLY nx ny nz).
+	OpenMesh::IO::Options opt = OpenMesh::IO::Options::VertexNormal;
+	opt += OpenMesh::IO::Options::VertexTexCoord;
+	mesh.request_vertex_normals();
+	mesh.request_vertex_texcoords2D();
 	try {
-		ok = OpenMesh::IO::IOManager().read(path, imp, opt);
+		std::string ply;
+		if (ext == "ply" && ply_texture_names(path, ply)) {
+			std::istringstream in(ply);
+			ok = OpenMesh::IO::IOManager().read(in, ".ply", imp, opt);
+		} else {
+			ok = OpenMesh::IO::IOManager().read(path, imp, opt);
+		}
 	} catch (const TooBig &e) {
 		return fail(out, err, path, e.what);
 	}
@@ -384,6 +426,26 @@ int read(const char *path, pm_meshdata *out, pm_error *err)
 			break;
 		}
 
+	if (opt.check(OpenMesh::IO::Options::VertexNormal)) {
+		out->normals = (double *)std::malloc(verts.size() * sizeof(double));
+		if (!out->normals)
+			return fail(out, err, path, "out of memory");
+		for (auto v : mesh.vertices()) {
+			const Mesh::Normal &n = mesh.normal(v);
+			for (int k = 0; k < 3; k++)
+				out->normals[3 * v.idx() + k] = n[k];
+		}
+	}
+	if (opt.check(OpenMesh::IO::Options::VertexTexCoord)) {
+		out->uv = (double *)std::malloc(2 * mesh.n_vertices() * sizeof(double));
+		if (!out->uv)
+			return fail(out, err, path, "out of memory");
+		for (auto v : mesh.vertices()) {
+			const Mesh::TexCoord2D &t = mesh.texcoord2D(v);
+			out->uv[2 * v.idx()] = t[0];
+			out->uv[2 * v.idx() + 1] = t[1];
+		}
+	}
 	out->verts = (double *)std::malloc(verts.size() * sizeof(double));
 	out->face_start = (uint32_t *)std::malloc(start.size() * sizeof(uint32_t));
 	out->face_vert = (uint32_t *)std::malloc(fv.size() * sizeof(uint32_t));
@@ -420,6 +482,8 @@ extern "C" void pm_mesh_free(pm_meshdata *m)
 	if (!m)
 		return;
 	std::free(m->verts);
+	std::free(m->normals);
+	std::free(m->uv);
 	std::free(m->face_start);
 	std::free(m->face_vert);
 	std::memset(m, 0, sizeof *m);

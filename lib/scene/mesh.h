@@ -23,6 +23,12 @@ typedef struct pm_meshdata {
 	uint32_t nfaces;
 	uint32_t *face_start;   /* nfaces + 1 entries into face_vert */
 	uint32_t *face_vert;    /* vertex indices, face_start[nfaces] of them */
+	/* Per-vertex normals as the file gives them (OBJ vn, PLY nx ny nz),
+	 * 3 * nverts, not normalized; NULL if the file has none. */
+	double *normals;
+	/* Per-vertex texture coordinates (OBJ vt, PLY u v / s t /
+	 * texture_u texture_v), 2 * nverts; NULL if the file has none. */
+	double *uv;
 	/* 1 if the mesh has no boundary halfedges (OpenMesh topology): a closed
 	 * surface. Faces OpenMesh could only add as separate non-manifold
 	 * pieces leave boundaries, so such a mesh is not closed. */

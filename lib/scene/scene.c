@@ -14,6 +14,7 @@
 #include <sys/stat.h>
 
 #include "base/maxpixels.h"
+#include "scene/imagefile.h"
 #include "scene/mesh.h"
 #include "formats/photonfile.h"
 #include "scene/scene_build.h"
@@ -255,6 +256,64 @@ find_material(const pm_scene *s, const char *name)
 }
 
 static int
+find_texture(const pm_scene *s, const char *name)
+{
+	for (int i = 0; i < s->ntexs; i++)
+		if (!strcmp(s->texs[i].name, name))
+			return i;
+	return -1;
+}
+
+/* The largest of a texture's values (each the mean of R, G, B) and, in
+ * *lo, the smallest. */
+static float
+tex_range(const pm_texture *t, float *lo)
+{
+	float hi;
+	if (t->kind == PM_TEX_CHECKER) {
+		float a = pm_lum(t->c1), b = pm_lum(t->c2);
+		*lo = fminf(a, b);
+		return fmaxf(a, b);
+	}
+	*lo = INFINITY;
+	hi = -INFINITY;
+	for (size_t i = 0; i < (size_t)t->w * t->h; i++) {
+		float v = (t->px[3 * i] + t->px[3 * i + 1] + t->px[3 * i + 2]) / 3;
+		*lo = fminf(*lo, v);
+		hi = fmaxf(hi, v);
+	}
+	return hi;
+}
+
+static float
+tex_max(const pm_texture *t)
+{
+	float lo;
+	return tex_range(t, &lo);
+}
+
+/* "tex NAME" where a material takes a colour or (scalar) a number: *slot
+ * gets the texture's index plus 1. A scalar texture must be > 0 throughout. */
+static int
+tex_arg(parser *p, int *slot, int scalar)
+{
+	p->pos++;
+	const char *name = peek(p);
+	if (!name)
+		return perr(p, "%s: expected a texture name after 'tex'", p->stmt);
+	int i = find_texture(p->s, name);
+	if (i < 0)
+		return perr(p, "%s: unknown texture '%s'", p->stmt, name);
+	p->pos++;
+	float lo;
+	tex_range(&p->s->texs[i], &lo);
+	if (scalar && !(lo > 0))
+		return perr(p, "%s: texture '%s' has values <= 0 (an exponent must be > 0)", p->stmt, name);
+	*slot = i + 1;
+	return 0;
+}
+
+static int
 st_material(parser *p)
 {
 	pm_scene *s = p->s;
@@ -313,14 +372,29 @@ st_material(parser *p)
 		snprintf(after, sizeof after, "'%s'", w);
 		switch (k) {
 		case W_ALBEDO: case W_KD:
+			if (peek(p) && !strcmp(peek(p), "tex")) {
+				if (tex_arg(p, &m.tkd, 0)) return -1;
+				m.kd = pm_v3(0.5f, 0.5f, 0.5f);
+				break;
+			}
 			if (vec3(p, &m.kd, after)) return -1;
 			if (!in01(m.kd)) return perr(p, "%s: %s must be in [0, 1]", stmt, w);
 			break;
 		case W_KS: case W_REFLECT: case W_TINT:
+			if (peek(p) && !strcmp(peek(p), "tex")) {
+				if (tex_arg(p, &m.tks, 0)) return -1;
+				m.ks = pm_v3(0.5f, 0.5f, 0.5f);
+				break;
+			}
 			if (vec3(p, &m.ks, after)) return -1;
 			if (!in01(m.ks)) return perr(p, "%s: %s must be in [0, 1]", stmt, w);
 			break;
 		case W_EXPONENT:
+			if (peek(p) && !strcmp(peek(p), "tex")) {
+				if (tex_arg(p, &m.texp, 1)) return -1;
+				m.exponent = tex_max(&s->texs[m.texp - 1]);
+				break;
+			}
 			if (numbers(p, 1, &d, after)) return -1;
 			if (!(d > 0)) return perr(p, "%s: exponent must be > 0, got %g", stmt, d);
 			m.exponent = (float)d;
@@ -342,7 +416,7 @@ st_material(parser *p)
 	for (int k = 0; k < NW; k++)
 		if ((required[m.kind] >> k & 1) && !(seen >> k & 1))
 			return perr(p, "%s: missing '%s'", stmt, words[k]);
-	if (m.kind == PM_MAT_GLOSSY) {
+	if (m.kind == PM_MAT_GLOSSY && !m.tkd && !m.tks) {
 		pm_vec3 t = pm_add(m.kd, m.ks);
 		if (!(t.x <= 1 && t.y <= 1 && t.z <= 1))
 			return perr(p, "%s: kd + ks exceeds 1 (the surface would create energy)", stmt);
@@ -397,7 +471,33 @@ typedef struct {
 	pm_vec3 motion;
 	int inward;   /* -1: not allowed */
 	int subdiv;   /* -1: not allowed */
+	int shading;  /* 0: not allowed; else SHADE_* */
 } tail;
+
+/* An object's shading normals: as its shape gives them (a mesh file's),
+ * computed from its faces (smooth), or none (flat). */
+enum { SHADE_DEFAULT = 1, SHADE_SMOOTH, SHADE_FLAT };
+
+/* The rotation by d[3] degrees about the axis d[0..2] into a (which is
+ * zeroed, translation included). */
+static int
+rotation(parser *p, const double d[4], double a[3][4])
+{
+	double len = sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+	if (!(len > 0))
+		return perr(p, "%s: rotate axis must not be zero", p->stmt);
+	/* Rodrigues' rotation formula: right-handed about the axis. */
+	double k[3] = {d[0] / len, d[1] / len, d[2] / len};
+	double th = d[3] * PM_PI / 180, c = cos(th), sn = sin(th);
+	memset(a, 0, 3 * sizeof a[0]);
+	for (int i = 0; i < 3; i++)
+		for (int j = 0; j < 3; j++)
+			a[i][j] = (i == j ? c : 0) + (1 - c) * k[i] * k[j];
+	a[0][1] -= sn * k[2]; a[0][2] += sn * k[1];
+	a[1][0] += sn * k[2]; a[1][2] -= sn * k[0];
+	a[2][0] -= sn * k[1]; a[2][1] += sn * k[0];
+	return 0;
+}
 
 static int
 parse_tail(parser *p, tail *t)
@@ -426,18 +526,8 @@ parse_tail(parser *p, tail *t)
 			p->pos++;
 			if (numbers(p, 4, d, "'rotate'"))
 				return -1;
-			double len = sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
-			if (!(len > 0))
-				return perr(p, "%s: rotate axis must not be zero", p->stmt);
-			/* Rodrigues' rotation formula: right-handed about the axis. */
-			double k[3] = {d[0] / len, d[1] / len, d[2] / len};
-			double th = d[3] * PM_PI / 180, c = cos(th), sn = sin(th);
-			for (int i = 0; i < 3; i++)
-				for (int j = 0; j < 3; j++)
-					a[i][j] = (i == j ? c : 0) + (1 - c) * k[i] * k[j];
-			a[0][1] -= sn * k[2]; a[0][2] += sn * k[1];
-			a[1][0] += sn * k[2]; a[1][2] -= sn * k[0];
-			a[2][0] -= sn * k[1]; a[2][1] += sn * k[0];
+			if (rotation(p, d, a))
+				return -1;
 			pm_xform_then(&t->xf, a);
 		} else if (!strcmp(w, "translate")) {
 			p->pos++;
@@ -454,6 +544,11 @@ parse_tail(parser *p, tail *t)
 				return perr(p, "%s: 'move' given twice", p->stmt);
 			if (vec3(p, &t->motion, "'move'"))
 				return -1;
+		} else if ((!strcmp(w, "smooth") || !strcmp(w, "flat")) && t->shading) {
+			p->pos++;
+			if (t->shading != SHADE_DEFAULT)
+				return perr(p, "%s: 'smooth' or 'flat' given twice", p->stmt);
+			t->shading = w[0] == 's' ? SHADE_SMOOTH : SHADE_FLAT;
 		} else if (!strcmp(w, "inward") && t->inward == 0) {
 			p->pos++;
 			t->inward = 1;
@@ -479,7 +574,9 @@ parse_tail(parser *p, tail *t)
 static int
 add_object(parser *p, int mat, const pm_shape *sh, const tail *t, int solid, int flip)
 {
-	pm_build_obj ob = {sh, t->xf, t->motion, mat, solid, flip, p->line, p->stmt};
+	int normals = t->shading == SHADE_SMOOTH && !sh->normals ? PM_NORMALS_SMOOTH
+	            : t->shading != SHADE_FLAT && sh->normals ? PM_NORMALS_SHAPE : PM_NORMALS_FLAT;
+	pm_build_obj ob = {sh, t->xf, t->motion, mat, solid, flip, p->line, p->stmt, normals};
 	pm_error e;
 	if (pm_build_object(p->b, &ob, &e))
 		return berr(p, &e);
@@ -513,8 +610,12 @@ st_quad(parser *p)
 	if (why)
 		return perr(p, "quad: %s", pm_shape_quad_problem(why));
 	pm_shape sh;
-	if (pm_shape_polygon(&sh, c, 4))
+	static const double quv[8] = {0, 0, 1, 0, 1, 1, 0, 1};
+	if (pm_shape_polygon(&sh, c, 4) || !(sh.uv = malloc(sizeof quv))) {
+		pm_shape_free(&sh);
 		return perr(p, "out of memory");
+	}
+	memcpy(sh.uv, quv, sizeof quv);
 	int r = add_object(p, mat, &sh, &t, 0, 0);
 	pm_shape_free(&sh);
 	return r;
@@ -536,8 +637,12 @@ st_triangle(parser *p)
 	if (!(pm_dlen(pm_dcross(e1, e2)) > 1e-9 * size * size))
 		return perr(p, "triangle: zero area (corners coincide or lie on a line)");
 	pm_shape sh;
-	if (pm_shape_polygon(&sh, c, 3))
+	static const double tuv[6] = {0, 0, 1, 0, 0, 1};
+	if (pm_shape_polygon(&sh, c, 3) || !(sh.uv = malloc(sizeof tuv))) {
+		pm_shape_free(&sh);
 		return perr(p, "out of memory");
+	}
+	memcpy(sh.uv, tuv, sizeof tuv);
 	int r = add_object(p, mat, &sh, &t, 0, 0);
 	pm_shape_free(&sh);
 	return r;
@@ -569,7 +674,7 @@ st_sphere(parser *p)
 {
 	int mat;
 	double c[4];
-	tail t = {.inward = -1, .subdiv = 0};
+	tail t = {.inward = -1, .subdiv = 0, .shading = SHADE_DEFAULT};
 	if (material_arg(p, &mat) || numbers(p, 4, c, "the material"))
 		return -1;
 	if (!(c[3] > 0))
@@ -579,6 +684,13 @@ st_sphere(parser *p)
 	pm_shape sh;
 	if (pm_shape_sphere(&sh, c, t.subdiv ? t.subdiv : PM_SPHERE_DEFAULT_SUBDIV))
 		return perr(p, "out of memory");
+	/* Smooth: the true sphere's normals at the vertices. */
+	if (t.shading == SHADE_SMOOTH && !(sh.normals = malloc(3 * (size_t)sh.nverts * sizeof *sh.normals))) {
+		pm_shape_free(&sh);
+		return perr(p, "out of memory");
+	}
+	for (uint32_t i = 0; sh.normals && i < 3 * sh.nverts; i++)
+		sh.normals[i] = (sh.verts[i] - c[i % 3]) / c[3];
 	int r = add_object(p, mat, &sh, &t, 1, 0);
 	pm_shape_free(&sh);
 	return r;
@@ -589,7 +701,7 @@ st_mesh(parser *p)
 {
 	const char *file = peek(p);
 	int mat;
-	tail t = {.inward = -1, .subdiv = -1};
+	tail t = {.inward = -1, .subdiv = -1, .shading = SHADE_DEFAULT};
 	if (!file)
 		return perr(p, "mesh: expected a file name");
 	p->pos++;
@@ -607,7 +719,9 @@ st_mesh(parser *p)
 		free(path);
 		return pm_preferr(p->err, "%s:%d", p->path, p->line);
 	}
-	pm_shape sh = {md.nverts, md.verts, md.nfaces, md.face_start, md.face_vert};
+	/* smooth: normals computed from the faces, not the file's. */
+	pm_shape sh = {md.nverts, md.verts, md.nfaces, md.face_start, md.face_vert,
+	               t.shading == SHADE_SMOOTH ? NULL : md.normals, md.uv};
 	/* Messages about the mesh's geometry name the file. */
 	snprintf(p->stmt_buf, sizeof p->stmt_buf, "mesh '%s'", path);
 	p->stmt = p->stmt_buf;
@@ -615,6 +729,318 @@ st_mesh(parser *p)
 	pm_mesh_free(&md);
 	free(path);
 	return r;
+}
+
+/* Reads the image file (relative to the scene's directory) for statement
+ * what, every texel times scale, each of which must then be a finite value
+ * >= 0. */
+static int
+image_arg(parser *p, const char *file, float scale, pm_rgbimage *im)
+{
+	size_t len = strlen(p->dir) + strlen(file) + 1;
+	char *path = malloc(len);
+	if (!path)
+		return perr(p, "out of memory");
+	snprintf(path, len, "%s%s", file[0] == '/' ? "" : p->dir, file);
+	if (pm_rgbimage_read(path, im, p->err)) {
+		free(path);
+		return pm_preferr(p->err, "%s:%d", p->path, p->line);
+	}
+	for (size_t i = 0; i < (size_t)im->w * im->h * 3; i++) {
+		float v = im->px[i] * scale;
+		if (!(v >= 0 && v <= 3e38f)) {
+			int r = perr(p, "%s: '%s': texel (%zu, %zu) is %g, not a finite value >= 0", p->stmt,
+			             path, i / 3 % (size_t)im->w, i / 3 / (size_t)im->w, (double)v);
+			free(path);
+			pm_rgbimage_free(im);
+			return r;
+		}
+		im->px[i] = v;
+	}
+	free(path);
+	return 0;
+}
+
+static int
+st_texture(parser *p)
+{
+	pm_texture t;
+	memset(&t, 0, sizeof t);
+	t.su = t.sv = 1;
+	const char *name = peek(p), *kind, *file = NULL;
+	int have_scale = 0, have_offset = 0;
+	double d[2];
+	if (!name)
+		return perr(p, "texture: expected a name");
+	if (strlen(name) >= sizeof t.name)
+		return perr(p, "texture: name '%.20s...' longer than %zu bytes", name, sizeof t.name - 1);
+	if (find_texture(p->s, name) >= 0)
+		return perr(p, "texture: '%s' is defined twice", name);
+	strcpy(t.name, name);
+	p->pos++;
+	kind = peek(p);
+	if (kind && !strcmp(kind, "image")) {
+		t.kind = PM_TEX_IMAGE;
+		p->pos++;
+		if (!(file = peek(p)))
+			return perr(p, "texture: expected a file name after 'image'");
+		p->pos++;
+	} else if (kind && !strcmp(kind, "checker")) {
+		t.kind = PM_TEX_CHECKER;
+		p->pos++;
+		if (vec3(p, &t.c1, "'checker'") || vec3(p, &t.c2, "'checker'"))
+			return -1;
+		if (!nonneg(t.c1) || !nonneg(t.c2))
+			return perr(p, "texture: checker colours must be >= 0");
+	} else {
+		return perr(p, "texture '%s': expected 'image' or 'checker'", name);
+	}
+	while (peek(p)) {
+		const char *w = peek(p);
+		int sc = !strcmp(w, "scale");
+		if (!sc && strcmp(w, "offset"))
+			return perr(p, "texture: unexpected '%s' (expected scale or offset)", w);
+		if (sc ? have_scale++ : have_offset++)
+			return perr(p, "texture: '%s' given twice", w);
+		p->pos++;
+		if (numbers(p, 2, d, sc ? "'scale'" : "'offset'"))
+			return -1;
+		if (sc) {
+			t.su = (float)d[0];
+			t.sv = (float)d[1];
+		} else {
+			t.ou = (float)d[0];
+			t.ov = (float)d[1];
+		}
+	}
+	if (file) {
+		pm_rgbimage im;
+		if (image_arg(p, file, 1, &im))
+			return -1;
+		t.w = im.w;
+		t.h = im.h;
+		t.px = im.px;
+	}
+	pm_error e;
+	if (pm_build_texture(p->b, &t, &e)) {
+		free(t.px);
+		return berr(p, &e);
+	}
+	return 0;
+}
+
+static int
+st_disk(parser *p)
+{
+	int mat;
+	double c[7];
+	tail t = {.inward = -1, .subdiv = -1};
+	if (material_arg(p, &mat) || numbers(p, 7, c, "the material"))
+		return -1;
+	if (!(c[6] > 0))
+		return perr(p, "disk: radius must be > 0, got %g", c[6]);
+	pm_dvec3 n = pm_dv3(c[3], c[4], c[5]);
+	if (!(pm_dlen(n) > 0))
+		return perr(p, "disk: the normal must not be zero");
+	if (parse_tail(p, &t))
+		return -1;
+	pm_shape sh;
+	if (pm_shape_disk(&sh, pm_dv3(c[0], c[1], c[2]), n, c[6]))
+		return perr(p, "out of memory");
+	int r = add_object(p, mat, &sh, &t, 0, 0);
+	pm_shape_free(&sh);
+	return r;
+}
+
+/* A light's colour after word w: each channel >= 0, not all 0. */
+static int
+light_colour(parser *p, pm_vec3 *v, const char *w)
+{
+	char after[24];
+	snprintf(after, sizeof after, "'%s'", w);
+	if (vec3(p, v, after))
+		return -1;
+	if (!nonneg(*v) || !(pm_maxc(*v) > 0))
+		return perr(p, "%s: %s must be >= 0 and not all zero", p->stmt, w);
+	return 0;
+}
+
+/* The index of w in words (n of them), after checking it was not seen. */
+static int
+light_word(parser *p, const char *const *words, int n, unsigned *seen)
+{
+	const char *w = peek(p);
+	int k;
+	for (k = 0; k < n && strcmp(w, words[k]); k++)
+		;
+	if (k == n) {
+		char list[200] = "";
+		for (int i = 0; i < n; i++)
+			snprintf(list + strlen(list), sizeof list - strlen(list), "%s%s",
+			         i == 0 ? "" : i == n - 1 ? " or " : ", ", words[i]);
+		return perr(p, "%s: unexpected '%s' (expected %s)", p->stmt, w, list);
+	}
+	if (*seen >> k & 1)
+		return perr(p, "%s: '%s' given twice", p->stmt, w);
+	*seen |= 1u << k;
+	p->pos++;
+	return k;
+}
+
+static int
+st_spotlight(parser *p)
+{
+	enum { W_TO, W_INTENSITY, W_CONE, W_FALLOFF, W_MOVE, NW };
+	static const char *const words[NW] = {"to", "intensity", "cone", "falloff", "move"};
+	pm_pointlight l;
+	pm_vec3 to = {0};
+	unsigned seen = 0;
+	double d[2];
+	memset(&l, 0, sizeof l);
+	l.kind = PM_LIGHT_SPOT;
+	if (vec3(p, &l.pos, "'spotlight'"))
+		return -1;
+	while (peek(p)) {
+		int k = light_word(p, words, NW, &seen);
+		const char *f;
+		switch (k) {
+		case W_TO:
+			if (vec3(p, &to, "'to'"))
+				return -1;
+			break;
+		case W_INTENSITY:
+			if (light_colour(p, &l.power, "intensity"))
+				return -1;
+			break;
+		case W_CONE:
+			if (numbers(p, 2, d, "'cone'"))
+				return -1;
+			if (!(d[0] > 0 && d[0] <= 90 && d[1] >= 0 && d[1] <= d[0]))
+				return perr(p, "spotlight: cone needs 0 < OUTER <= 90 and 0 <= INNER <= OUTER degrees, got %g %g",
+				            d[0], d[1]);
+			l.outer = (float)d[0];
+			l.inner = (float)d[1];
+			break;
+		case W_FALLOFF:
+			f = peek(p);
+			if (f && !strcmp(f, "smooth"))
+				l.falloff = PM_FALLOFF_SMOOTH;
+			else if (f && !strcmp(f, "linear"))
+				l.falloff = PM_FALLOFF_LINEAR;
+			else
+				return perr(p, "spotlight: falloff must be smooth or linear");
+			p->pos++;
+			break;
+		case W_MOVE:
+			if (vec3(p, &l.motion, "'move'"))
+				return -1;
+			break;
+		default:
+			return -1;
+		}
+	}
+	for (int k = 0; k < W_FALLOFF; k++)
+		if (!(seen >> k & 1))
+			return perr(p, "spotlight: missing '%s'", words[k]);
+	l.dir = pm_sub(to, l.pos);
+	if (!(pm_len(l.dir) > 0))
+		return perr(p, "spotlight: 'to' is the light's own position (no direction)");
+	l.dir = pm_norm(l.dir);
+	pm_error e;
+	if (pm_build_light(p->b, &l, &e))
+		return berr(p, &e);
+	return 0;
+}
+
+static int
+st_distantlight(parser *p)
+{
+	enum { W_DIR, W_IRRADIANCE, NW };
+	static const char *const words[NW] = {"dir", "irradiance"};
+	pm_pointlight l;
+	unsigned seen = 0;
+	memset(&l, 0, sizeof l);
+	l.kind = PM_LIGHT_DISTANT;
+	while (peek(p)) {
+		int k = light_word(p, words, NW, &seen);
+		if (k < 0)
+			return -1;
+		if (k == W_DIR ? vec3(p, &l.dir, "'dir'") : light_colour(p, &l.power, "irradiance"))
+			return -1;
+		if (k == W_DIR && !(pm_len(l.dir) > 0))
+			return perr(p, "distantlight: dir must not be zero");
+	}
+	for (int k = 0; k < NW; k++)
+		if (!(seen >> k & 1))
+			return perr(p, "distantlight: missing '%s'", words[k]);
+	l.dir = pm_norm(l.dir);
+	pm_error e;
+	if (pm_build_light(p->b, &l, &e))
+		return berr(p, &e);
+	return 0;
+}
+
+static int
+st_envlight(parser *p)
+{
+	pm_pointlight l;
+	const char *w = peek(p), *file = NULL;
+	double scale = 1, d[4], a[3][4];
+	int have_scale = 0;
+	memset(&l, 0, sizeof l);
+	l.kind = PM_LIGHT_ENV;
+	for (int i = 0; i < 3; i++)
+		l.rot[i][i] = 1;
+	for (int i = 0; i < p->s->nlights; i++)
+		if (p->s->lights[i].kind == PM_LIGHT_ENV)
+			return perr(p, "envlight: a second environment light (at most one)");
+	if (w && !strcmp(w, "radiance")) {
+		p->pos++;
+		if (light_colour(p, &l.power, "radiance"))
+			return -1;
+		if (peek(p))
+			return perr(p, "envlight: unexpected '%s'", peek(p));
+	} else if (w && !strcmp(w, "image")) {
+		p->pos++;
+		if (!(file = peek(p)))
+			return perr(p, "envlight: expected a file name after 'image'");
+		p->pos++;
+		while ((w = peek(p))) {
+			p->pos++;
+			if (!strcmp(w, "scale") && !have_scale++) {
+				if (numbers(p, 1, &scale, "'scale'"))
+					return -1;
+				if (!(scale > 0))
+					return perr(p, "envlight: scale must be > 0, got %g", scale);
+			} else if (!strcmp(w, "rotate")) {
+				if (numbers(p, 4, d, "'rotate'") || rotation(p, d, a))
+					return -1;
+				float r[3][3];
+				for (int i = 0; i < 3; i++)
+					for (int j = 0; j < 3; j++)
+						r[i][j] = (float)(a[i][0] * l.rot[0][j] + a[i][1] * l.rot[1][j]
+						                  + a[i][2] * l.rot[2][j]);
+				memcpy(l.rot, r, sizeof r);
+			} else {
+				return perr(p, "envlight: unexpected '%s' (expected scale or rotate)", w);
+			}
+		}
+		pm_rgbimage im;
+		l.power = pm_v3(1, 1, 1);
+		if (image_arg(p, file, (float)scale, &im))
+			return -1;
+		l.env = im.px;
+		l.env_w = im.w;
+		l.env_h = im.h;
+	} else {
+		return perr(p, "envlight: expected 'radiance' or 'image'");
+	}
+	pm_error e;
+	if (pm_build_light(p->b, &l, &e)) {
+		free(l.env);
+		return berr(p, &e);
+	}
+	return 0;
 }
 
 /* Splits line (NUL-terminated, comment already cut) into p->tok. */
@@ -644,6 +1070,8 @@ statement(parser *p)
 		{"camera", st_camera}, {"glossy_threshold", st_threshold},
 		{"material", st_material}, {"mesh", st_mesh}, {"quad", st_quad}, {"triangle", st_triangle},
 		{"box", st_box}, {"sphere", st_sphere}, {"pointlight", st_pointlight},
+		{"disk", st_disk}, {"spotlight", st_spotlight}, {"distantlight", st_distantlight},
+		{"envlight", st_envlight}, {"texture", st_texture},
 	};
 	const char *w = p->tok[0];
 	for (size_t i = 0; i < sizeof st / sizeof st[0]; i++)
@@ -721,7 +1149,8 @@ parse(parser *p, char *data, size_t len)
 	for (int i = 0; i < s->nobjs && !lit; i++)
 		lit = pm_maxc(s->mats[s->objs[i].material].emit) > 0;
 	if (!lit)
-		return perr(p, "no light (add a pointlight or an object with an emitting material)");
+		return perr(p, "no light (add a pointlight, spotlight, distantlight, envlight "
+		            "or an object with an emitting material)");
 	for (int i = 0; i < s->nmats; i++) {
 		pm_material *m = &s->mats[i];
 		m->strong = m->kind == PM_MAT_MIRROR || m->kind == PM_MAT_GLASS
@@ -790,8 +1219,15 @@ pm_scene_free(pm_scene *s)
 	free(s->path);
 	free(s->mats);
 	free(s->objs);
+	for (int i = 0; i < s->nlights; i++)
+		free(s->lights[i].env);
 	free(s->lights);
 	free(s->verts);
+	free(s->vnormal);
+	free(s->vuv);
+	for (int i = 0; i < s->ntexs; i++)
+		free(s->texs[i].px);
+	free(s->texs);
 	free(s->poly_start);
 	free(s->poly_vert);
 	free(s->poly_obj);

@@ -28,7 +28,22 @@ typedef struct pm_material {
 	 * glossy with exponent >= the scene's glossy threshold), 0 if photons are
 	 * stored here and the radiance is estimated (diffuse, soft glossy). */
 	int strong;
+	/* Textures (formats/scene.md), each an index into scene->texs plus 1,
+	 * 0 for none: of kd (albedo), of ks (reflect, tint), of the exponent. */
+	int tkd, tks, texp;
 } pm_material;
+
+/* An image or a checkerboard, looked up at a point's (u, v) by
+ * pm_hit_material (accel.h). */
+enum pm_tex_kind { PM_TEX_IMAGE, PM_TEX_CHECKER };
+typedef struct pm_texture {
+	char name[64];
+	int kind;           /* enum pm_tex_kind */
+	int w, h;           /* image: w x h linear RGB texels, row 0 the top */
+	float *px;
+	pm_vec3 c1, c2;     /* checker: the colours of even and odd squares */
+	float su, sv, ou, ov;  /* (u, v) -> (u su + ou, v sv + ov) first */
+} pm_texture;
 
 typedef struct pm_object {
 	int material;       /* index into scene->mats */
@@ -39,12 +54,31 @@ typedef struct pm_object {
 	uint32_t first_tri, ntris;    /* range in the triangle arrays */
 	uint32_t first_vert, nverts;  /* range in verts */
 	int line;           /* scene line that made it, for messages */
+	int smooth;         /* 1: its vertices carry shading normals (vnormal) */
+	int has_uv;         /* 1: its vertices carry texture coordinates (vuv) */
 } pm_object;
 
+/* The lights that are not surfaces (formats/scene.md): point, spot,
+ * distant and environment lights. */
+enum pm_light_kind { PM_LIGHT_POINT, PM_LIGHT_SPOT, PM_LIGHT_DISTANT, PM_LIGHT_ENV };
+enum pm_spot_falloff { PM_FALLOFF_SMOOTH, PM_FALLOFF_LINEAR };
+
 typedef struct pm_pointlight {
-	pm_vec3 pos;        /* at t = 0 */
-	pm_vec3 power;      /* W per channel, emitted isotropically */
+	int kind;           /* enum pm_light_kind */
+	pm_vec3 pos;        /* at t = 0 (point, spot) */
+	/* point: power (W); spot: intensity on the axis (W/sr); distant:
+	 * irradiance (W/m^2); environment: radiance (W/m^2/sr), constant or
+	 * the image's scale (per channel). */
+	pm_vec3 power;
 	pm_vec3 motion;
+	pm_vec3 dir;        /* spot: unit axis; distant: unit direction of travel */
+	float outer, inner; /* spot: half-angles of the cone, degrees */
+	int falloff;        /* spot: enum pm_spot_falloff */
+	/* environment image: w x h RGB texels, row 0 the top (+y); rot turns
+	 * the map's directions into the world's. NULL for a constant sky. */
+	float *env;
+	int env_w, env_h;
+	float rot[3][3];
 } pm_pointlight;
 
 typedef struct pm_camera_desc {
@@ -66,6 +100,14 @@ typedef struct pm_scene {
 	pm_pointlight *lights; int nlights;
 
 	pm_vec3 *verts;     uint32_t nverts;  /* world space at t = 0 */
+	/* Shading normals per vertex (unit, toward the front; motion only
+	 * translates, so they hold at every time), or NULL if no object is
+	 * smooth; 0 for the vertices of objects that are not. */
+	pm_vec3 *vnormal;
+	/* Texture coordinates per vertex (u, v), or NULL if no object has
+	 * them; 0 for the vertices of objects that have not. */
+	float (*vuv)[2];
+	pm_texture *texs;   int ntexs;
 
 	/* Planar polygons (>= 3 vertices, nonzero area, counter-clockwise seen
 	 * from the front). Polygon i has vertices poly_vert[poly_start[i] ..
@@ -97,7 +139,7 @@ void pm_scene_free(pm_scene *s);
  * t * motion of the vertex's object. out has s->nverts entries. */
 void pm_scene_verts_at(const pm_scene *s, float t, pm_vec3 *out);
 
-/* Point light position at time t. */
+/* Position of light i (point or spot) at time t. */
 pm_vec3 pm_scene_light_at(const pm_scene *s, int i, float t);
 
 /* 1 if photons are stored and radiance estimated at this material (diffuse

@@ -191,6 +191,105 @@ add_face(pm_scene_build *b, uint32_t *idx, uint32_t n, uint32_t obj, const char 
 	return 0;
 }
 
+/* The object o's texture coordinates into s->vuv, kept as s->vnormal is. */
+static int
+build_uv(pm_scene_build *b, const pm_build_obj *ob, pm_object *o, pm_error *err)
+{
+	pm_scene *s = b->s;
+	int first = !s->vuv;
+
+	if (!ob->shape->uv && !s->vuv)
+		return 0;
+	if (grow(&s->vuv, &b->cap_vuv, s->nverts, sizeof *s->vuv, err))
+		return -1;
+	if (first)
+		memset(s->vuv, 0, o->first_vert * sizeof *s->vuv);
+	for (uint32_t i = 0; i < o->nverts; i++) {
+		const double *t = ob->shape->uv ? ob->shape->uv + 2 * (size_t)i : NULL;
+		s->vuv[o->first_vert + i][0] = t && isfinite(t[0]) ? (float)t[0] : 0.0f;
+		s->vuv[o->first_vert + i][1] = t && isfinite(t[1]) ? (float)t[1] : 0.0f;
+	}
+	o->has_uv = ob->shape->uv != NULL;
+	return 0;
+}
+
+int
+pm_build_texture(pm_scene_build *b, const pm_texture *t, pm_error *err)
+{
+	if (b->s->ntexs >= MAX_MATS)
+		return pm_seterr(err, "texture: more than %d textures", MAX_MATS);
+	return append(&b->s->texs, &b->cap_texs, &b->s->ntexs, t, sizeof *t, err);
+}
+
+/* The object o's shading normals (pm_build_obj.normals) into s->vnormal,
+ * which exists from the first smooth object on and is kept as long as
+ * s->verts, 0 where an object has none. */
+static int
+build_normals(pm_scene_build *b, const pm_build_obj *ob, pm_object *o, pm_error *err)
+{
+	pm_scene *s = b->s;
+	size_t had = s->vnormal ? b->cap_vnormal : 0;
+
+	if (ob->normals == PM_NORMALS_FLAT && !s->vnormal)
+		return 0;
+	if (!s->vnormal)
+		had = 0;
+	if (grow(&s->vnormal, &b->cap_vnormal, s->nverts, sizeof *s->vnormal, err))
+		return -1;
+	if (had == 0)
+		memset(s->vnormal, 0, o->first_vert * sizeof *s->vnormal);
+	pm_vec3 *vn = s->vnormal + o->first_vert;
+	memset(vn, 0, o->nverts * sizeof *vn);
+	if (ob->normals == PM_NORMALS_SHAPE) {
+		/* Normals map by the inverse transpose: the cofactors, signed by
+		 * the determinant; an inward object's front is the other side. */
+		const double (*m)[4] = ob->xf.m;
+		double c[3][3], sg = xform_det(&ob->xf) < 0 ? -1 : 1;
+		for (int i = 0; i < 3; i++)
+			for (int j = 0; j < 3; j++)
+				c[i][j] = m[(i + 1) % 3][(j + 1) % 3] * m[(i + 2) % 3][(j + 2) % 3]
+				        - m[(i + 1) % 3][(j + 2) % 3] * m[(i + 2) % 3][(j + 1) % 3];
+		if (ob->flip)
+			sg = -sg;
+		for (uint32_t i = 0; i < o->nverts; i++) {
+			const double *x = ob->shape->normals + 3 * (size_t)i;
+			pm_dvec3 n = pm_dv3(c[0][0] * x[0] + c[0][1] * x[1] + c[0][2] * x[2],
+			                    c[1][0] * x[0] + c[1][1] * x[1] + c[1][2] * x[2],
+			                    c[2][0] * x[0] + c[2][1] * x[1] + c[2][2] * x[2]);
+			double l = pm_dlen(n);
+			if (l > 0 && isfinite(l))
+				vn[i] = pm_v3((float)(sg * n.x / l), (float)(sg * n.y / l), (float)(sg * n.z / l));
+		}
+	} else if (ob->normals == PM_NORMALS_SMOOTH) {
+		/* Each polygon's normal weighted by its angle at the vertex
+		 * (Thuermer & Wuethrich 1998): independent of how the faces
+		 * around a vertex are split. */
+		pm_dvec3 *acc = calloc(o->nverts ? o->nverts : 1, sizeof *acc);
+		if (!acc)
+			return pm_seterr(err, "%s: out of memory", ob->what);
+		for (uint32_t p = o->first_poly; p < o->first_poly + o->npolys; p++) {
+			uint32_t a = s->poly_start[p], n = s->poly_start[p + 1] - a;
+			pm_dvec3 pn = pm_dfromf(s->poly_normal[p]);
+			for (uint32_t i = 0; i < n; i++) {
+				uint32_t vi = s->poly_vert[a + i];
+				pm_dvec3 x = pm_dfromf(s->verts[vi]);
+				pm_dvec3 e0 = pm_dsub(pm_dfromf(s->verts[s->poly_vert[a + (i + n - 1) % n]]), x);
+				pm_dvec3 e1 = pm_dsub(pm_dfromf(s->verts[s->poly_vert[a + (i + 1) % n]]), x);
+				double ang = atan2(pm_dlen(pm_dcross(e0, e1)), pm_ddot(e0, e1));
+				acc[vi - o->first_vert] = pm_dadd(acc[vi - o->first_vert], pm_dscale(pn, ang));
+			}
+		}
+		for (uint32_t i = 0; i < o->nverts; i++) {
+			double l = pm_dlen(acc[i]);
+			if (l > 0 && isfinite(l))
+				vn[i] = pm_v3((float)(acc[i].x / l), (float)(acc[i].y / l), (float)(acc[i].z / l));
+		}
+		free(acc);
+	}
+	o->smooth = ob->normals != PM_NORMALS_FLAT;
+	return 0;
+}
+
 int
 pm_build_object(pm_scene_build *b, const pm_build_obj *ob, pm_error *err)
 {
@@ -254,6 +353,8 @@ pm_build_object(pm_scene_build *b, const pm_build_obj *ob, pm_error *err)
 	o->ntris = s->ntris - o->first_tri;
 	if (o->npolys == 0)
 		return pm_seterr(err, "%s: no polygon with nonzero area", ob->what);
+	if (build_normals(b, ob, o, err) || build_uv(b, ob, o, err))
+		return -1;
 	s->nobjs++;
 	return 0;
 }

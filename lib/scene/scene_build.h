@@ -26,6 +26,7 @@ typedef struct pm_scene_build {
 	pm_scene *s;
 	/* capacities of the growing arrays in s */
 	size_t cap_mats, cap_objs, cap_lights, cap_verts, cap_polys, cap_pverts, cap_tris;
+	size_t cap_vnormal, cap_vuv, cap_texs;
 	void *work;         /* triangulation scratch */
 	size_t work_size;
 	uint32_t (*tribuf)[3];
@@ -42,13 +43,21 @@ typedef struct pm_build_obj {
 	int flip;           /* reverse the shape's faces */
 	int line;           /* pm_object.line */
 	const char *what;   /* the statement, for messages: "box", "mesh 'x.obj'" */
+	int normals;        /* PM_NORMALS_*: the object's shading normals */
 } pm_build_obj;
+
+enum {
+	PM_NORMALS_FLAT,    /* none: the facets' own */
+	PM_NORMALS_SHAPE,   /* the shape's (shape->normals), transformed */
+	PM_NORMALS_SMOOTH,  /* each vertex's faces' normals weighted by their angle there */
+};
 
 /* Each appends one item to b->s; 0, or -1 with a message when a bound of
  * formats/scene.md is passed, out of memory, or (objects) a vertex is out of
  * float range or no face has area. Faces with repeated corners lose them,
  * faces without area are dropped, non-planar faces split into triangles. */
 int pm_build_material(pm_scene_build *b, const pm_material *m, pm_error *err);
+int pm_build_texture(pm_scene_build *b, const pm_texture *t, pm_error *err);
 int pm_build_light(pm_scene_build *b, const pm_pointlight *l, pm_error *err);
 int pm_build_object(pm_scene_build *b, const pm_build_obj *ob, pm_error *err);
 

@@ -55,8 +55,22 @@ light_identity(const pm_scene *s)
 		h = put_u32(put_u32(h, o->npolys), o->nverts);
 	}
 	h = put_u32(h, (uint32_t)s->nlights);
-	for (int i = 0; i < s->nlights; i++)
-		h = put_vec(put_vec(put_vec(h, s->lights[i].pos), s->lights[i].power), s->lights[i].motion);
+	for (int i = 0; i < s->nlights; i++) {
+		const pm_pointlight *l = &s->lights[i];
+		h = put_vec(put_vec(put_vec(h, l->pos), l->power), l->motion);
+		if (l->kind == PM_LIGHT_POINT)
+			continue;
+		h = put_u32(put_vec(put_u32(h, (uint32_t)l->kind), l->dir), (uint32_t)l->falloff);
+		h = put_f32(put_f32(h, l->outer), l->inner);
+		if (!l->env)
+			continue;
+		h = put_u32(put_u32(h, (uint32_t)l->env_w), (uint32_t)l->env_h);
+		for (int r = 0; r < 3; r++)
+			for (int c = 0; c < 3; c++)
+				h = put_f32(h, l->rot[r][c]);
+		for (size_t k = 0; k < (size_t)l->env_w * l->env_h * 3; k++)
+			h = put_f32(h, l->env[k]);
+	}
 	h = put_u32(h, s->nverts);
 	for (uint32_t i = 0; i < s->nverts; i++)
 		h = put_vec(h, s->verts[i]);
@@ -67,6 +81,28 @@ light_identity(const pm_scene *s)
 		h = put_u32(h, s->poly_start[i + 1] - s->poly_start[i]);
 		for (uint32_t j = s->poly_start[i]; j < s->poly_start[i + 1]; j++)
 			h = put_u32(h, s->poly_vert[j]);
+	}
+	/* Shading normals only where some object has them, so that the
+	 * identities of scenes without stay what they were. */
+	if (s->vnormal)
+		for (uint32_t i = 0; i < s->nverts; i++)
+			h = put_vec(h, s->vnormal[i]);
+	/* Textures likewise: only in scenes that have them. */
+	if (s->ntexs > 0) {
+		h = put_u32(h, (uint32_t)s->ntexs);
+		for (int i = 0; i < s->ntexs; i++) {
+			const pm_texture *t = &s->texs[i];
+			h = put_u32(put_u32(put_u32(h, (uint32_t)t->kind), (uint32_t)t->w), (uint32_t)t->h);
+			for (size_t k = 0; k < (size_t)t->w * t->h * 3; k++)
+				h = put_f32(h, t->px[k]);
+			h = put_vec(put_vec(h, t->c1), t->c2);
+			h = put_f32(put_f32(put_f32(put_f32(h, t->su), t->sv), t->ou), t->ov);
+		}
+		for (int i = 0; i < s->nmats; i++)
+			h = put_u32(put_u32(put_u32(h, (uint32_t)s->mats[i].tkd), (uint32_t)s->mats[i].tks),
+			            (uint32_t)s->mats[i].texp);
+		for (uint32_t i = 0; s->vuv && i < s->nverts; i++)
+			h = put_f32(put_f32(h, s->vuv[i][0]), s->vuv[i][1]);
 	}
 	return h;
 }

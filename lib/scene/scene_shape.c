@@ -119,6 +119,30 @@ pm_shape_polygon(pm_shape *sh, const double *c, uint32_t n)
 }
 
 int
+pm_shape_disk(pm_shape *sh, pm_dvec3 c, pm_dvec3 n, double r)
+{
+	const uint32_t k = PM_DISK_CORNERS;
+	/* A regular k-gon inscribed in radius R has area (k/2) R^2 sin(2 pi/k). */
+	double R = r * sqrt(2 * PM_PI / (k * sin(2 * PM_PI / k)));
+	pm_dvec3 w = pm_dscale(n, 1 / pm_dlen(n));
+	pm_dvec3 a = fabs(w.x) > 0.5 ? pm_dv3(0, 1, 0) : pm_dv3(1, 0, 0);
+	pm_dvec3 u = pm_dcross(a, w);
+	u = pm_dscale(u, 1 / pm_dlen(u));
+	pm_dvec3 v = pm_dcross(w, u);    /* u x v = w: counter-clockwise from the front */
+
+	if (alloc(sh, k, 1, k))
+		return -1;
+	for (uint32_t i = 0; i < k; i++) {
+		double t = 2 * PM_PI * i / k;
+		pm_dvec3 p = pm_dadd(c, pm_dadd(pm_dscale(u, R * cos(t)), pm_dscale(v, R * sin(t))));
+		set_vert(sh, i, p.x, p.y, p.z);
+		sh->face_vert[i] = i;
+	}
+	sh->face_start[1] = k;
+	return 0;
+}
+
+int
 pm_shape_box(pm_shape *sh, const double c[6])
 {
 	/* Vertex i has x from bit 0, y from bit 1, z from bit 2. */
@@ -186,6 +210,8 @@ pm_shape_sphere(pm_shape *sh, const double c[4], int subdiv)
 void
 pm_shape_free(pm_shape *sh)
 {
+	free(sh->normals);
+	free(sh->uv);
 	free(sh->verts);
 	free(sh->face_start);
 	free(sh->face_vert);

@@ -1,7 +1,8 @@
 /* exrstat — statistics of an EXR's RGB (or one layer) over the image or a
  * window, for tests: "mean: ", "min: ", "max: ", "pixels: " lines, where a
  * pixel's value is the mean of its three channels.
- * Usage: exrstat [--window X0,Y0,X1,Y1] [--layer NAME] [--pixel X,Y] FILE.exr */
+ * With --dump, one "X Y VALUE" line per pixel of the window instead.
+ * Usage: exrstat [--window X0,Y0,X1,Y1] [--layer NAME] [--pixel X,Y] [--dump] FILE.exr */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -12,7 +13,7 @@
 int
 main(int argc, char **argv)
 {
-	int x0 = 0, y0 = 0, x1 = -1, y1 = -1, px = -1, py = -1;
+	int x0 = 0, y0 = 0, x1 = -1, y1 = -1, px = -1, py = -1, dump = 0;
 	const char *layer = NULL, *file = NULL;
 	char names[3][64];
 	const float *ch[3];
@@ -26,6 +27,8 @@ main(int argc, char **argv)
 			sscanf(argv[++i], "%d,%d,%d,%d", &x0, &y0, &x1, &y1);
 		else if (!strcmp(argv[i], "--layer") && i + 1 < argc)
 			layer = argv[++i];
+		else if (!strcmp(argv[i], "--dump"))
+			dump = 1;
 		else if (!strcmp(argv[i], "--pixel") && i + 1 < argc)
 			sscanf(argv[++i], "%d,%d", &px, &py);
 		else
@@ -54,12 +57,15 @@ main(int argc, char **argv)
 		for (int x = x0; x < x1 && x < img.width; x++) {
 			size_t i = (size_t)y * img.width + x;
 			double v = (ch[0][i] + ch[1][i] + ch[2][i]) / 3.0;
+			if (dump)
+				printf("%d %d %.9g\n", x, y, v);
 			sum += v;
 			mn = fmin(mn, v);
 			mx = fmax(mx, v);
 			n++;
 		}
-	printf("mean: %.9g\nmin: %.9g\nmax: %.9g\npixels: %ld\n", n ? sum / n : 0, mn, mx, n);
+	if (!dump)
+		printf("mean: %.9g\nmin: %.9g\nmax: %.9g\npixels: %ld\n", n ? sum / n : 0, mn, mx, n);
 	pm_image_free(&img);
 	return 0;
 }
