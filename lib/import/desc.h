@@ -91,9 +91,15 @@ typedef struct pmi_light {
 	double dir[3];        /* spot, distant: the direction light travels */
 	double color[3];      /* point, spot: intensity (W/sr); distant: irradiance
 	                       * on a surface facing it; infinite: radiance */
-	double cone, falloff; /* spot: full-intensity half-angle and the
-	                       * falloff's width, degrees */
-	char map[256];        /* infinite: an environment image, or "" */
+	double cone, falloff; /* spot: the cone's half-angle and the width of
+	                       * its falloff inside it, degrees */
+	int linear;           /* spot: falloff linear in the angle (Mitsuba),
+	                       * else smoothstep in the cosine (pbrt-v4) */
+	char map[4096];       /* infinite: an environment image, or "" */
+	int equal_area;       /* map is pbrt-v4's equal-area square, else lat-long */
+	double map_scale;     /* infinite map: multiplies its texels (0 = 1) */
+	int has_rot;          /* infinite map: rot is its to_world's linear part */
+	double rot[3][3];
 } pmi_light;
 
 typedef struct pmi_note {

@@ -804,8 +804,14 @@ emitter(mreader *M, const xnode *n)
 	l->color[0] = l->color[1] = l->color[2] = 1;
 	if (!strcmp(type, "point") || !strcmp(type, "spot")) {
 		l->kind = type[0] == 'p' ? PMI_LIGHT_POINT : PMI_LIGHT_SPOT;
-		if (pcolor(M, n, "intensity", l->color, NULL, 0) < 0 || pfloat(M, n, "cutoff_angle", 20, &l->cone))
+		double beam;
+		if (pcolor(M, n, "intensity", l->color, NULL, 0) < 0 || pfloat(M, n, "cutoff_angle", 20, &l->cone) ||
+		    pfloat(M, n, "beam_width", l->cone * 0.75, &beam))
 			return -1;
+		/* Mitsuba 3: full intensity within beam_width, falling linearly
+		 * in the angle to 0 at cutoff_angle. */
+		l->falloff = l->cone - beam;
+		l->linear = 1;
 	} else if (!strcmp(type, "directional")) {
 		l->kind = PMI_LIGHT_DISTANT;
 		const xnode *dp = prop(M, n, "direction");
@@ -818,7 +824,14 @@ emitter(mreader *M, const xnode *n)
 		if (pcolor(M, n, "radiance", l->color, NULL, 0) < 0)
 			return -1;
 		const char *fn = pstring(M, n, "filename");
-		snprintf(l->map, sizeof l->map, "%s", fn ? fn : "");
+		if (fn && resolve(M, fn, l->map, sizeof l->map))
+			return pmi_err(M->d, n->src, M->err, "envmap: file name too long");
+		if (pfloat(M, n, "scale", 1, &l->map_scale))
+			return -1;
+		l->has_rot = 1;
+		for (int i = 0; i < 3; i++)
+			for (int k = 0; k < 3; k++)
+				l->rot[i][k] = tw.m[i][k];
 	} else
 		l->kind = PMI_LIGHT_OTHER;
 	return 0;

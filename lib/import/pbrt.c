@@ -995,7 +995,21 @@ do_light(parser *P, lexer *L, const char *type, plist *pl, pmi_src at)
 		l->kind = PMI_LIGHT_INFINITE;
 		if (pcolor(P, L, pl, "L", col, NULL, 0) < 0)
 			return -1;
-		snprintf(l->map, sizeof l->map, "%s", pstring(pl, "filename", ""));
+		const char *fn = pstring(pl, "filename", "");
+		if (fn[0]) {
+			if (resolve_path(P, fn, l->map, sizeof l->map))
+				return pmi_err(P->d, at, P->err, "infinite: file name too long");
+			l->equal_area = 1;
+			col[0] = col[1] = col[2] = 1;
+		}
+		/* pbrt-v4: illuminance sets scale so the upward hemisphere
+		 * receives it; a constant sky of L gives pi L. */
+		double E = pfloat(pl, "illuminance", -1);
+		if (E > 0 && !fn[0])
+			scale *= E / PM_PI;
+		else if (E > 0)
+			pmi_note_add(P->d, at, "infinite: illuminance with an image not applied (scale %g used)", scale);
+		l->map_scale = scale;
 	} else
 		return pmi_err(P->d, at, P->err, "unknown light '%s'", type);
 	for (int c = 0; c < 3; c++)

@@ -312,31 +312,158 @@ material_for(wctx *w, const pmi_shape *s, FILE *f)
 	return p;
 }
 
-/* ---- lights: pm has point lights; the rest waits for them (issue 23) ---- */
+/* ---- lights: pm has them all with pbrt-v4's and Mitsuba 3's units
+ * (formats/scene.md), so each maps one to one ---- */
+
+static int
+positive(const double c[3])
+{
+	return c[0] > 0 || c[1] > 0 || c[2] > 0;
+}
+
+/* The axis and angle (degrees) of the rotation part of r (columns
+ * normalized); -1 if it mirrors or is degenerate. */
+static int
+axis_angle(const double r[3][3], double axis[3], double *deg)
+{
+	double q[3][3];
+	for (int k = 0; k < 3; k++) {
+		double l = sqrt(r[0][k] * r[0][k] + r[1][k] * r[1][k] + r[2][k] * r[2][k]);
+		if (!(l > 0))
+			return -1;
+		for (int i = 0; i < 3; i++)
+			q[i][k] = r[i][k] / l;
+	}
+	double det = q[0][0] * (q[1][1] * q[2][2] - q[1][2] * q[2][1]) - q[0][1] * (q[1][0] * q[2][2] - q[1][2] * q[2][0]) +
+	             q[0][2] * (q[1][0] * q[2][1] - q[1][1] * q[2][0]);
+	if (det < 0)
+		return -1;
+	double c = fmax(-1, fmin(1, 0.5 * (q[0][0] + q[1][1] + q[2][2] - 1)));
+	double a[3] = { q[2][1] - q[1][2], q[0][2] - q[2][0], q[1][0] - q[0][1] };
+	double l = sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]);
+	if (l < 1e-6) {
+		/* 0 or 180 degrees: the axis is the column of q + I with the
+		 * largest norm. */
+		int best = 0;
+		double bn = -1;
+		for (int k = 0; k < 3; k++) {
+			double v[3] = { q[0][k], q[1][k], q[2][k] };
+			v[k] += 1;
+			double n2 = v[0] * v[0] + v[1] * v[1] + v[2] * v[2];
+			if (n2 > bn) {
+				bn = n2;
+				best = k;
+			}
+		}
+		for (int i = 0; i < 3; i++)
+			a[i] = q[i][best] + (i == best);
+		l = sqrt(bn);
+	}
+	for (int i = 0; i < 3; i++)
+		axis[i] = a[i] / l;
+	*deg = acos(c) * 180 / PM_PI;
+	return 0;
+}
+
+static int copy_image(wctx *w, const char *src, pmi_src at, char *name, size_t n);
 
 static int
 write_lights(wctx *w, FILE *f)
 {
-	int n = 0;
+	int n = 0, nenv = 0;
 
 	for (size_t i = 0; i < w->d->nlights; i++) {
 		const pmi_light *l = &w->d->lights[i];
-		double p[3];
+		double p[3], q[3], c[3];
+		for (int k = 0; k < 3; k++)
+			c[k] = fmax(l->color[k], 0);
+		memcpy(p, l->pos, sizeof p);
+		mirror_point(w, p);
 		switch (l->kind) {
 		case PMI_LIGHT_POINT:
-			memcpy(p, l->pos, sizeof p);
-			mirror_point(w, p);
-			if (!(l->color[0] > 0 || l->color[1] > 0 || l->color[2] > 0)) {
+			if (!positive(c)) {
 				pmi_note_add(w->d, l->src, "point light of zero intensity: dropped");
 				break;
 			}
 			/* An isotropic point light of intensity I emits 4 pi I. */
 			fprintf(f, "pointlight %.9g %.9g %.9g power %.9g %.9g %.9g\n", p[0], p[1], p[2],
-			        4 * PM_PI * fmax(l->color[0], 0), 4 * PM_PI * fmax(l->color[1], 0), 4 * PM_PI * fmax(l->color[2], 0));
+			        4 * PM_PI * c[0], 4 * PM_PI * c[1], 4 * PM_PI * c[2]);
+			n++;
+			break;
+		case PMI_LIGHT_SPOT: {
+			double outer = l->cone, inner = l->cone - l->falloff;
+			double dl = sqrt(l->dir[0] * l->dir[0] + l->dir[1] * l->dir[1] + l->dir[2] * l->dir[2]);
+			if (!positive(c) || !(dl > 0) || !(outer > 0)) {
+				pmi_note_add(w->d, l->src, "spot light of zero intensity, direction or cone: dropped");
+				break;
+			}
+			if (outer > 90) {
+				pmi_note_add(w->d, l->src, "spot light cone of %g degrees: cut to 90 (pm's widest)", outer);
+				outer = 90;
+			}
+			inner = fmin(fmax(inner, 0), outer);
+			for (int k = 0; k < 3; k++)
+				q[k] = l->pos[k] + l->dir[k] / dl;
+			mirror_point(w, q);
+			fprintf(f, "spotlight %.9g %.9g %.9g to %.9g %.9g %.9g intensity %.9g %.9g %.9g cone %.9g %.9g falloff %s\n",
+			        p[0], p[1], p[2], q[0], q[1], q[2], c[0], c[1], c[2], outer, inner,
+			        l->linear ? "linear" : "smooth");
+			n++;
+			break;
+		}
+		case PMI_LIGHT_DISTANT:
+			memcpy(q, l->dir, sizeof q);
+			mirror_point(w, q);
+			if (!positive(c) || !(q[0] != 0 || q[1] != 0 || q[2] != 0)) {
+				pmi_note_add(w->d, l->src, "distant light of zero irradiance or direction: dropped");
+				break;
+			}
+			fprintf(f, "distantlight dir %.9g %.9g %.9g irradiance %.9g %.9g %.9g\n", q[0], q[1], q[2],
+			        c[0], c[1], c[2]);
+			n++;
+			break;
+		case PMI_LIGHT_INFINITE:
+			if (nenv) {
+				pmi_note_add(w->d, l->src, "a second environment light: dropped (pm has at most one)");
+				break;
+			}
+			if (!l->map[0]) {
+				if (!positive(c)) {
+					pmi_note_add(w->d, l->src, "environment light of zero radiance: dropped");
+					break;
+				}
+				fprintf(f, "envlight radiance %.9g %.9g %.9g\n", c[0], c[1], c[2]);
+			} else {
+				char name[512];
+				double axis[3], deg = 0, sc = l->map_scale > 0 ? l->map_scale : 1;
+				if (l->equal_area) {
+					pmi_note_add(w->d, l->src, "environment image '%s' is pbrt-v4's equal-area square; pm reads "
+					             "lat-long maps only: dropped", l->map);
+					break;
+				}
+				if (w->mirror) {
+					pmi_note_add(w->d, l->src, "environment image in a mirrored world: pm cannot mirror it, dropped");
+					break;
+				}
+				if (l->has_rot && axis_angle(l->rot, axis, &deg)) {
+					pmi_note_add(w->d, l->src, "environment image with a mirroring or degenerate to_world: dropped");
+					break;
+				}
+				int r = copy_image(w, l->map, l->src, name, sizeof name);
+				if (r < 0)
+					return -1;
+				if (r > 0)
+					break;
+				fprintf(f, "envlight image %s scale %.9g", name, sc);
+				if (deg > 1e-9)
+					fprintf(f, " rotate %.9g %.9g %.9g %.9g", axis[0], axis[1], axis[2], deg);
+				fputc('\n', f);
+			}
+			nenv++;
 			n++;
 			break;
 		default:
-			pmi_note_add(w->d, l->src, "light '%s': pm has no such light yet, dropped", l->type);
+			pmi_note_add(w->d, l->src, "light '%s': pm has no such light, dropped", l->type);
 			break;
 		}
 	}
@@ -496,6 +623,61 @@ write_file(wctx *w, const char *path, const char *buf, size_t len)
 	return 0;
 }
 
+/* Copies image file src beside the scene as STEM-HASH.EXT (the hash of
+ * its bytes), so the scene directory holds all it needs; its name in
+ * name. 1 (noted) if src cannot be read, -1 on a write error. */
+static int
+copy_image(wctx *w, const char *src, pmi_src at, char *name, size_t n)
+{
+	FILE *in = fopen(src, "rb");
+	char *buf = NULL, path[4700];
+	size_t len = 0, cap = 0, k;
+
+	if (!in) {
+		pmi_note_add(w->d, at, "image '%s' cannot be read (%s): dropped", src, strerror(errno));
+		return 1;
+	}
+	for (;;) {
+		if (len == cap) {
+			char *nb = realloc(buf, cap = cap ? 2 * cap : 65536);
+			if (!nb) {
+				free(buf);
+				fclose(in);
+				return pm_seterr(w->err, "out of memory");
+			}
+			buf = nb;
+		}
+		if (!(k = fread(buf + len, 1, cap - len, in)))
+			break;
+		len += k;
+	}
+	int bad = ferror(in);
+	fclose(in);
+	if (bad || len == 0) {
+		free(buf);
+		pmi_note_add(w->d, at, "image '%s' cannot be read or is empty: dropped", src);
+		return 1;
+	}
+	const char *base = strrchr(src, '/'), *dot;
+	base = base ? base + 1 : src;
+	dot = strrchr(base, '.');
+	char ext[16] = "";
+	if (dot && strlen(dot) < sizeof ext && strcspn(dot, " \t#") == strlen(dot))
+		snprintf(ext, sizeof ext, "%s", dot);
+	snprintf(name, n, "%s-%016llx%s", w->stem, (unsigned long long)pm_fnv1a(PM_FNV_OFFSET, buf, len), ext);
+	snprintf(path, sizeof path, "%s%s", w->dir, name);
+	int seen = 0;
+	for (size_t i = 0; i < w->nmeshes; i++)
+		if (!strcmp(w->meshes[i], name))
+			seen = 1;
+	if (!seen && (write_file(w, path, buf, len) || remember(&w->meshes, &w->nmeshes, name))) {
+		free(buf);
+		return w->err->msg[0] ? -1 : pm_seterr(w->err, "out of memory");
+	}
+	free(buf);
+	return 0;
+}
+
 static int
 write_shape(wctx *w, const pmi_shape *s, FILE *f, const pm_mat *pmm)
 {
@@ -554,8 +736,10 @@ old_meshes(wctx *w, const char *pms, char ***names, size_t *n)
 	if (!f)
 		return;
 	while (fgets(line, sizeof line, f))
-		if (sscanf(line, "mesh %511s", name) == 1 && strncmp(name, w->stem, sl) == 0 &&
-		    strlen(name) == sl + 21 && name[sl] == '-' && strcmp(name + sl + 17, ".ply") == 0 &&
+		if ((sscanf(line, "mesh %511s", name) == 1 || sscanf(line, "texture %*s image %511s", name) == 1 ||
+		     sscanf(line, "envlight image %511s", name) == 1) &&
+		    strncmp(name, w->stem, sl) == 0 && strlen(name) >= sl + 17 && name[sl] == '-' &&
+		    strspn(name + sl + 1, "0123456789abcdef") == 16 && (!name[sl + 17] || name[sl + 17] == '.') &&
 		    remember(names, n, name))
 			break;
 	fclose(f);
@@ -600,8 +784,13 @@ write_body(wctx *w, FILE *body, int width, int height, int *nlights)
 		else if (k > 0 && emits)
 			(*nlights)++;
 	}
-	if (!r)
-		*nlights += write_lights(w, objs);
+	if (!r) {
+		int nl = write_lights(w, objs);
+		if (nl < 0)
+			r = -1;
+		else
+			*nlights += nl;
+	}
 	int e1 = fclose(mats), e2 = fclose(objs);
 	if (!r && (e1 || e2))
 		r = pm_seterr(w->err, "out of memory");
