@@ -38,6 +38,7 @@ pmi_free(pmi_desc *d)
 	free(d->shapes);
 	free(d->mats);
 	free(d->lights);
+	free(d->texs);
 	free(d->notes);
 	memset(d, 0, sizeof *d);
 }
@@ -104,6 +105,17 @@ pmi_add_light(pmi_desc *d, pmi_src src)
 	if (l)
 		l->src = src;
 	return l;
+}
+
+pmi_texture *
+pmi_add_texture(pmi_desc *d, pmi_src src)
+{
+	pmi_texture *t = grow((void **)&d->texs, &d->ntexs, &d->captexs, sizeof *t);
+	if (t) {
+		t->src = src;
+		t->su = t->sv = 1;
+	}
+	return t;
 }
 
 int

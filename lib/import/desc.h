@@ -57,10 +57,26 @@ typedef struct pmi_material {
 	double eta;          /* index of refraction (dielectric, thin, coat) */
 	double alpha;        /* microfacet roughness alpha, 0 = smooth */
 	double exponent;     /* Phong exponent (PMI_MAT_PHONG) */
-	/* A colour given by an image: until pm has textures the writer uses
-	 * color and reports the file. */
+	/* A colour given by a texture: its name for reports, and tex, 1 +
+	 * the index in texs of its description (0 where the reader could not
+	 * describe it: the writer then uses color and reports the name). The
+	 * texture replaces color (spec for a conductor). */
 	char texture[256];
+	int tex;
 } pmi_material;
+
+/* A texture pm can draw (formats/scene.md, "texture"): an image or a
+ * checkerboard over the surface's (u, v) mapped to (u su + ou, v sv + ov). */
+enum pmi_tex_kind { PMI_TEX_IMAGE, PMI_TEX_CHECKER };
+
+typedef struct pmi_texture {
+	pmi_src src;
+	int kind;
+	char file[4096];      /* image: its path as the reader resolved it */
+	double c[2][3];       /* checker: the colours where floor(u) + floor(v)
+	                       * is even and odd */
+	double su, sv, ou, ov;
+} pmi_texture;
 
 enum pmi_shape_kind { PMI_SHAPE_MESH, PMI_SHAPE_SPHERE };
 
@@ -114,6 +130,7 @@ typedef struct pmi_desc {
 	pmi_material *mats; size_t nmats, capmats;
 	pmi_shape *shapes; size_t nshapes, capshapes;
 	pmi_light *lights; size_t nlights, caplights;
+	pmi_texture *texs; size_t ntexs, captexs;
 	pmi_note *notes; size_t nnotes, capnotes;
 } pmi_desc;
 
@@ -127,6 +144,7 @@ int pmi_file(pmi_desc *d, const char *path);
 pmi_material *pmi_add_material(pmi_desc *d, pmi_src src);
 pmi_shape *pmi_add_shape(pmi_desc *d, pmi_src src);
 pmi_light *pmi_add_light(pmi_desc *d, pmi_src src);
+pmi_texture *pmi_add_texture(pmi_desc *d, pmi_src src);   /* scale 1 1, offset 0 0 */
 void pmi_shape_free(pmi_shape *s);
 
 /* Records what was approximated or dropped. The same message noted again

@@ -76,8 +76,9 @@ typedef struct wctx {
 	char dir[4096], stem[256];
 	char **made;         /* files this call created, removed on failure */
 	size_t nmade;
-	char **meshes;       /* mesh file names the scene uses */
+	char **meshes;       /* mesh and image file names the scene uses */
 	size_t nmeshes;
+	int *tex_state;      /* per desc texture: 0 not yet written, 1 written, -1 dropped */
 } wctx;
 
 static double
@@ -168,9 +169,20 @@ material_line(wctx *w, const pm_mat *pmm, char *line, size_t n, int first)
 	int kind = m->kind;
 
 	snprintf(mname, sizeof mname, m->name[0] ? "material '%s' (%s)" : "material%s (%s)", m->name, m->type);
-	if (first && m->texture[0])
-		pmi_note_add(w->d, m->src, "%s: texture '%s' not mapped (pm has no textures yet): constant %.3g %.3g %.3g",
+	/* A texture pm draws replaces the colour it stands for: tx is the
+	 * words to put where R G B would be. */
+	char tx[32] = "";
+	int textured = m->tex > 0 && w->tex_state[m->tex - 1] > 0;
+	if (textured)
+		snprintf(tx, sizeof tx, "tex t%d", m->tex - 1);
+	if (first && m->texture[0] && !textured)
+		pmi_note_add(w->d, m->src, "%s: texture '%s' not mapped: constant %.3g %.3g %.3g",
 		             mname, m->texture, m->color[0], m->color[1], m->color[2]);
+	if (first && textured && (kind == PMI_MAT_DIELECTRIC || kind == PMI_MAT_THIN || kind == PMI_MAT_INVISIBLE))
+		pmi_note_add(w->d, m->src, "%s: texture '%s' dropped (pm's glass takes none here)", mname, m->texture);
+	if (first && textured && kind == PMI_MAT_COATED)
+		pmi_note_add(w->d, m->src, "%s: texture '%s' used as kd as it is (the coat's share of the base's light "
+		             "applies to constant colours only)", mname, m->texture);
 	if (emits && (kind == PMI_MAT_CONDUCTOR || kind == PMI_MAT_DIELECTRIC || kind == PMI_MAT_THIN ||
 	              kind == PMI_MAT_INVISIBLE)) {
 		if (first)
@@ -189,7 +201,10 @@ material_line(wctx *w, const pm_mat *pmm, char *line, size_t n, int first)
 	case PMI_MAT_DIFFTRANS:
 		for (int c = 0; c < 3; c++)
 			a[c] = clamp01(m->color[c], &cl);
-		snprintf(line, n, "material %s diffuse albedo %.9g %.9g %.9g%s\n", nm, a[0], a[1], a[2], tail);
+		if (textured)
+			snprintf(line, n, "material %s diffuse albedo %s%s\n", nm, tx, tail);
+		else
+			snprintf(line, n, "material %s diffuse albedo %.9g %.9g %.9g%s\n", nm, a[0], a[1], a[2], tail);
 		if (kind == PMI_MAT_DIFFTRANS)
 			snprintf(what, sizeof what, "diffuse reflection kept, diffuse transmission %.3g dropped", m->trans[1]);
 		break;
@@ -204,8 +219,12 @@ material_line(wctx *w, const pm_mat *pmm, char *line, size_t n, int first)
 			a[c] = rho * (1 - f0) * (1 - fi) / (1 - rho * fi);
 			b[c] = f0;
 		}
-		snprintf(line, n, "material %s glossy kd %.9g %.9g %.9g ks %.9g %.9g %.9g exponent %.9g%s\n", nm,
-		         a[0], a[1], a[2], b[0], b[1], b[2], e, tail);
+		if (textured)
+			snprintf(line, n, "material %s glossy kd %s ks %.9g %.9g %.9g exponent %.9g%s\n", nm,
+			         tx, b[0], b[1], b[2], e, tail);
+		else
+			snprintf(line, n, "material %s glossy kd %.9g %.9g %.9g ks %.9g %.9g %.9g exponent %.9g%s\n", nm,
+			         a[0], a[1], a[2], b[0], b[1], b[2], e, tail);
 		snprintf(what, sizeof what, "diffuse under a coat (internal reflectance %.3g) plus a Blinn lobe of "
 		         "F0 = %.3g, exponent %.4g (alpha %.3g)", fi, f0, e, m->alpha);
 		break;
@@ -213,7 +232,15 @@ material_line(wctx *w, const pm_mat *pmm, char *line, size_t n, int first)
 	case PMI_MAT_CONDUCTOR:
 		for (int c = 0; c < 3; c++)
 			b[c] = clamp01(m->spec[c], &cl);
-		if (m->alpha == 0) {
+		if (m->alpha == 0 && textured) {
+			snprintf(line, n, "material %s mirror reflect %s\n", nm, tx);
+			snprintf(what, sizeof what, "mirror of its textured normal-incidence reflectance");
+		} else if (textured) {
+			e = blinn_exponent(m->alpha);
+			snprintf(line, n, "material %s glossy kd 0 0 0 ks %s exponent %.9g%s\n", nm, tx, e, tail);
+			snprintf(what, sizeof what, "Blinn glossy, ks textured (reflectance at normal incidence), "
+			         "exponent %.4g (alpha %.3g)", e, m->alpha);
+		} else if (m->alpha == 0) {
 			snprintf(line, n, "material %s mirror reflect %.9g %.9g %.9g\n", nm, b[0], b[1], b[2]);
 			snprintf(what, sizeof what, "mirror of its normal-incidence reflectance %.3g %.3g %.3g", b[0], b[1], b[2]);
 		} else {
@@ -247,7 +274,16 @@ material_line(wctx *w, const pm_mat *pmm, char *line, size_t n, int first)
 				s = fmin(s, 1 / (a[c] + b[c]));
 		}
 		if (b[0] == 0 && b[1] == 0 && b[2] == 0) {
-			snprintf(line, n, "material %s diffuse albedo %.9g %.9g %.9g%s\n", nm, a[0], a[1], a[2], tail);
+			if (textured)
+				snprintf(line, n, "material %s diffuse albedo %s%s\n", nm, tx, tail);
+			else
+				snprintf(line, n, "material %s diffuse albedo %.9g %.9g %.9g%s\n", nm, a[0], a[1], a[2], tail);
+			break;
+		}
+		if (textured) {
+			/* pm scales a textured kd + ks down to 1 where it exceeds it. */
+			snprintf(line, n, "material %s glossy kd %s ks %.9g %.9g %.9g exponent %.9g%s\n", nm, tx,
+			         b[0], b[1], b[2], m->exponent > 1 ? m->exponent : 1, tail);
 			break;
 		}
 		e = m->exponent > 1 ? m->exponent : 1;
@@ -262,6 +298,41 @@ material_line(wctx *w, const pm_mat *pmm, char *line, size_t n, int first)
 		pmi_note_add(w->d, m->src, "%s: %s", mname, what);
 	if (first && cl)
 		pmi_note_add(w->d, m->src, "%s: colours clamped to [0, 1]", mname);
+}
+
+static int copy_image(wctx *w, const char *src, pmi_src at, char *name, size_t n);
+
+/* Writes texture ti as pm's texture tTI (its image copied beside the
+ * scene) and marks it written, or dropped if its image cannot be read. */
+static int
+texture_line(wctx *w, int ti, FILE *f)
+{
+	const pmi_texture *t = &w->d->texs[ti];
+	char name[512];
+
+	if (t->kind == PMI_TEX_IMAGE) {
+		int r = copy_image(w, t->file, t->src, name, sizeof name);
+		if (r < 0)
+			return -1;
+		if (r > 0) {
+			w->tex_state[ti] = -1;
+			return 0;
+		}
+		fprintf(f, "texture t%d image %s", ti, name);
+	} else {
+		double c[2][3];
+		int cl = 0;
+		for (int k = 0; k < 2; k++)
+			for (int i = 0; i < 3; i++)
+				c[k][i] = clamp01(t->c[k][i], &cl);
+		if (cl)
+			pmi_note_add(w->d, t->src, "checkerboard colours clamped to [0, 1]");
+		fprintf(f, "texture t%d checker %.9g %.9g %.9g  %.9g %.9g %.9g", ti, c[0][0], c[0][1], c[0][2],
+		        c[1][0], c[1][1], c[1][2]);
+	}
+	fprintf(f, " scale %.9g %.9g offset %.9g %.9g\n", t->su, t->sv, t->ou, t->ov);
+	w->tex_state[ti] = 1;
+	return 0;
 }
 
 /* The pm material for a shape: one per source material, emission and
@@ -306,6 +377,9 @@ material_for(wctx *w, const pmi_shape *s, FILE *f)
 	clean[k] = 0;
 	snprintf(p->name, sizeof p->name, "m%zu%s%s", w->nmats, k ? "-" : "", clean);
 	w->nmats++;
+	int ti = w->d->mats[mi].tex - 1;
+	if (ti >= 0 && w->tex_state[ti] == 0 && texture_line(w, ti, f))
+		return NULL;
 	char line[512];
 	material_line(w, p, line, sizeof line, first);
 	fputs(line, f);
@@ -364,8 +438,6 @@ axis_angle(const double r[3][3], double axis[3], double *deg)
 	*deg = acos(c) * 180 / PM_PI;
 	return 0;
 }
-
-static int copy_image(wctx *w, const char *src, pmi_src at, char *name, size_t n);
 
 static int
 write_lights(wctx *w, FILE *f)
@@ -500,20 +572,21 @@ put_f32(FILE *f, float x)
 	put_u32(f, u);
 }
 
-typedef struct wvert { float p[3]; uint32_t id; } wvert;
 
 /* The mesh with equal positions welded (so a closed surface whose file
- * repeats vertices at uv seams is a closed solid to pm) and faces of no
+ * repeats vertices at uv seams is a closed solid to pm; with_uv welds
+ * only where (u, v) are equal too, as a texture needs) and faces of no
  * area dropped, as a binary PLY in memory. */
 static int
-mesh_ply(wctx *w, const pmi_shape *s, char **buf, size_t *len, size_t *kept)
+mesh_ply(wctx *w, const pmi_shape *s, int with_uv, char **buf, size_t *len, size_t *kept)
 {
+	enum { K = 5 };   /* x y z u v */
 	size_t cap = 1;
 	while (cap < 2 * s->nv + 16)
 		cap <<= 1;
 	int64_t *slot = malloc(cap * sizeof *slot);
 	uint32_t *remap = malloc((s->nv ? s->nv : 1) * sizeof *remap);
-	float *pv = malloc((s->nv ? s->nv : 1) * 3 * sizeof *pv);
+	float *pv = malloc((s->nv ? s->nv : 1) * K * sizeof *pv);
 	size_t nu = 0;
 	FILE *f;
 
@@ -524,19 +597,23 @@ mesh_ply(wctx *w, const pmi_shape *s, char **buf, size_t *len, size_t *kept)
 	for (size_t i = 0; i < cap; i++)
 		slot[i] = -1;
 	for (size_t i = 0; i < s->nv; i++) {
-		float p[3] = { s->v[3 * i], s->v[3 * i + 1], s->v[3 * i + 2] };
+		float p[K] = { s->v[3 * i], s->v[3 * i + 1], s->v[3 * i + 2], 0, 0 };
+		if (with_uv) {
+			p[3] = s->uv[2 * i];
+			p[4] = s->uv[2 * i + 1];
+		}
 		if (w->mirror)
 			p[0] = -p[0];
-		for (int c = 0; c < 3; c++)
+		for (int c = 0; c < K; c++)
 			if (p[c] == 0)
 				p[c] = 0;   /* -0 and +0 weld */
 		uint64_t h = pm_fnv1a(PM_FNV_OFFSET, p, sizeof p);
 		size_t k = h & (cap - 1);
-		while (slot[k] >= 0 && memcmp(pv + 3 * slot[k], p, sizeof p) != 0)
+		while (slot[k] >= 0 && memcmp(pv + K * slot[k], p, sizeof p) != 0)
 			k = (k + 1) & (cap - 1);
 		if (slot[k] < 0) {
 			slot[k] = (int64_t)nu;
-			memcpy(pv + 3 * nu, p, sizeof p);
+			memcpy(pv + K * nu, p, sizeof p);
 			nu++;
 		}
 		remap[i] = (uint32_t)slot[k];
@@ -548,8 +625,9 @@ mesh_ply(wctx *w, const pmi_shape *s, char **buf, size_t *len, size_t *kept)
 	}
 	/* Which faces have area, and their corners after welding. */
 	double ext = 0;
-	for (size_t i = 0; i < 3 * nu; i++)
-		ext = fmax(ext, fabs(pv[i]));
+	for (size_t i = 0; i < nu; i++)
+		for (int c = 0; c < 3; c++)
+			ext = fmax(ext, fabs(pv[K * i + c]));
 	size_t nf = 0, nfan = 0;
 	unsigned char *keep = calloc(s->nface ? s->nface : 1, 1);
 	if (!keep) {
@@ -573,10 +651,12 @@ mesh_ply(wctx *w, const pmi_shape *s, char **buf, size_t *len, size_t *kept)
 		}
 	}
 	fprintf(f, "ply\nformat binary_little_endian 1.0\ncomment pm-import\nelement vertex %zu\n"
-	        "property float x\nproperty float y\nproperty float z\nelement face %zu\n"
-	        "property list uchar uint vertex_indices\nend_header\n", nu, nf + nfan);
-	for (size_t i = 0; i < 3 * nu; i++)
-		put_f32(f, pv[i]);
+	        "property float x\nproperty float y\nproperty float z\n%selement face %zu\n"
+	        "property list uchar uint vertex_indices\nend_header\n", nu,
+	        with_uv ? "property float u\nproperty float v\n" : "", nf + nfan);
+	for (size_t i = 0; i < nu; i++)
+		for (int c = 0; c < (with_uv ? 5 : 3); c++)
+			put_f32(f, pv[K * i + c]);
 	for (size_t fi = 0; fi < s->nface; fi++) {
 		if (!keep[fi])
 			continue;
@@ -692,13 +772,18 @@ write_shape(wctx *w, const pmi_shape *s, FILE *f, const pm_mat *pmm)
 		/* Emitters finer: their area (radiance x area is their power)
 		 * is 0.05 % short at subdiv 5, 0.2 % at pm's default 4. */
 		int emits = s->emit[0] > 0 || s->emit[1] > 0 || s->emit[2] > 0;
+		if (w->d->mats[s->mat].tex > 0 && w->tex_state[w->d->mats[s->mat].tex - 1] > 0)
+			pmi_note_add(w->d, s->src, "textured sphere: pm's spheres have no (u, v), the texture is read at (0, 0)");
 		fprintf(f, "sphere %s %.9g %.9g %.9g %.9g subdiv %d\n", pmm->name, c[0], c[1], c[2], s->radius,
 		        emits ? 5 : 4);
 		return 1;
 	}
 	char *buf = NULL, name[512], path[4700];
 	size_t len = 0, kept = 0;
-	if (mesh_ply(w, s, &buf, &len, &kept))
+	if (s->mat >= 0 && w->d->mats[s->mat].tex > 0 && w->tex_state[w->d->mats[s->mat].tex - 1] > 0 && !s->uv)
+		pmi_note_add(w->d, s->src, "textured shape without (u, v): pm reads its texture at (0, 0)");
+	int with_uv = s->uv && s->mat >= 0 && w->d->mats[s->mat].tex > 0 && w->tex_state[w->d->mats[s->mat].tex - 1] > 0;
+	if (mesh_ply(w, s, with_uv, &buf, &len, &kept))
 		return pm_seterr(w->err, "out of memory");
 	if (kept == 0) {
 		free(buf);
@@ -775,7 +860,7 @@ write_body(wctx *w, FILE *body, int width, int height, int *nlights)
 			continue;
 		const pm_mat *pmm = material_for(w, s, mats);
 		if (!pmm) {
-			r = pm_seterr(w->err, "out of memory");
+			r = w->err->msg[0] ? -1 : pm_seterr(w->err, "out of memory");
 			break;
 		}
 		int k = write_shape(w, s, objs, pmm);
@@ -816,6 +901,9 @@ pmi_write(pmi_desc *d, const char *pms_path, const pmi_write_opts *o, pm_error *
 	memset(&w, 0, sizeof w);
 	w.d = d;
 	w.err = err;
+	err->msg[0] = 0;
+	if (!(w.tex_state = calloc(d->ntexs + 1, sizeof *w.tex_state)))
+		return pm_seterr(err, "out of memory");
 	const char *sl = strrchr(pms_path, '/');
 	const char *base = sl ? sl + 1 : pms_path;
 	if (sl)
@@ -935,6 +1023,7 @@ out:
 		free(w.meshes[i]);
 	free(w.meshes);
 	free(w.mats);
+	free(w.tex_state);
 	return r;
 }
 

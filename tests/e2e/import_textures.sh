@@ -1,0 +1,59 @@
+# import_textures.sh — pbrt-v4 textures through pm-import, read back from
+# a floor lit by a distant light of irradiance pi from straight above (so
+# a diffuse floor reads its albedo): a checkerboard's two squares, the same
+# through a "scale" texture, and an 8-bit image texture decoded from sRGB;
+# the image is copied beside the scene.
+. "$PM_TOP/tests/lib.sh"
+stat="$PM_BIN/../tests/tools/exrstat"
+win() { "$stat" --window "$2" "$1" | sed -n "s/^$3: //p"; }
+
+# The floor from x, z = -1 to 1 carries (u, v) from 0 to 1; 33 x 33 pixels
+# see x, z within +-0.73, the squares' edges on the middle row and column.
+pbrt() {
+	echo 'LookAt 0 2 0  0 0 0  0 0 1'
+	echo 'Camera "perspective" "float fov" [ 40 ]'
+	echo 'Film "rgb" "integer xresolution" [ 33 ] "integer yresolution" [ 33 ] "string filename" "out.exr"'
+	echo 'WorldBegin'
+	echo 'LightSource "distant" "point3 from" [ 0 1 0 ] "point3 to" [ 0 0 0 ] "rgb L" [ 3.14159265358979 3.14159265358979 3.14159265358979 ]'
+	echo "$1"
+	echo 'Shape "trianglemesh" "point3 P" [ -1 0 -1  1 0 -1  1 0 1  -1 0 1 ] "point2 uv" [ 0 0  1 0  1 1  0 1 ]'
+	echo '  "integer indices" [ 0 2 1  0 3 2 ]'
+}
+run() {
+	pm-import -q $1.pbrt -o $1/scene.pms 2>$1.err
+	check "$1: imports ($(head -c 200 $1.err))" test -s $1/scene.pms
+	pm-render -q -e path -p 4 $1/scene.pms -o $1.exr
+}
+quads() {   # the four squares' means
+	for w in 2,2,14,14 19,2,31,14 2,19,14,31 19,19,31,31; do win $1.exr $w mean; done
+}
+
+pbrt 'Texture "ck" "spectrum" "checkerboard" "float uscale" 2 "float vscale" 2 "rgb tex1" [ 0.8 0.8 0.8 ] "rgb tex2" [ 0.2 0.2 0.2 ]
+Material "diffuse" "texture reflectance" "ck"' >ck.pbrt
+pbrt 'Texture "ck0" "spectrum" "checkerboard" "float uscale" 2 "float vscale" 2 "rgb tex1" [ 1.6 1.6 1.6 ] "rgb tex2" [ 0.4 0.4 0.4 ]
+Texture "ck" "spectrum" "scale" "texture tex" "ck0" "float scale" 0.5
+Material "diffuse" "texture reflectance" "ck"' >sck.pbrt
+for s in ck sck; do
+	run $s
+	set -- $(quads $s)
+	num_near "$s: a square reads tex1 (0.8)" "$(printf '%s\n' "$@" | sort -g | tail -n 1)" 0.8 1e-5
+	num_near "$s: a square reads tex2 (0.2)" "$(printf '%s\n' "$@" | sort -g | head -n 1)" 0.2 1e-5
+	num_near "$s: diagonal squares alike" "$1" "$4" 1e-6
+	num_near "$s: neighbours differ by 0.6" "$(awk -v a="$1" -v b="$2" 'BEGIN { d = a - b; print d < 0 ? -d : d }')" 0.6 1e-5
+done
+check "the checker's uscale/vscale are pm's scale" grep -q '^texture t0 checker .* scale 2 2 offset 0 0' ck/scene.pms
+
+# An 8-bit grey image of 128: sRGB-decoded 0.2158605 everywhere.
+printf 'P2\n2 2\n255\n128 128\n128 128\n' >grey.pgm
+pbrt 'Texture "im" "spectrum" "imagemap" "string filename" "grey.pgm"
+Material "diffuse" "texture reflectance" "im"' >im.pbrt
+run im
+num_near "imagemap: 8-bit 128 reads its sRGB decoding" "$(win im.exr 0,0,33,33 mean)" 0.2158605 1e-5
+img=$(sed -n 's/^texture t0 image \([^ ]*\) .*/\1/p' im/scene.pms)
+check "the image is copied beside the scene" cmp -s "im/$img" grey.pgm
+check "the mesh file carries u and v" grep -aq '^property float u$' "im/$(sed -n 's/^mesh \([^ ]*\) .*/\1/p' im/scene.pms)"
+# A missing image: noted with its line, the constant colour used.
+sed 's/grey.pgm/none.pgm/' im.pbrt >miss.pbrt
+pm-import miss.pbrt -o miss/scene.pms 2>miss.err
+check "a missing image is noted with the Texture's line" grep -q 'miss.pbrt:6: image .*none.pgm.* cannot be read' miss.err
+check "... and the scene is written without it" grep -q '^material .* diffuse albedo 0.5 0.5 0.5' miss/scene.pms
