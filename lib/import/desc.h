@@ -93,6 +93,7 @@ typedef struct pmi_shape {
 	 * outside). uv may be NULL. */
 	size_t nv, nface;
 	float *v, *uv;
+	float *n;             /* per-vertex shading normals, or NULL */
 	uint32_t *start;      /* nface + 1 entries into idx */
 	uint32_t *idx;
 } pmi_shape;

@@ -688,7 +688,7 @@ shape(mreader *M, const xnode *n)
 				return pmi_err(M->d, n->src, M->err, "%s", e.msg);
 		} else if (pmi_ply_read(path, &s, &N, &e))
 			return pmi_err(M->d, n->src, M->err, "%s", e.msg);
-		free(N);
+		s.n = N;   /* shading normals, carried by to_world below */
 	} else if (!strcmp(type, "rectangle")) {
 		static const float v[] = { -1, -1, 0, 1, -1, 0, 1, 1, 0, -1, 1, 0 };
 		static const uint32_t q[] = { 0, 1, 2, 3 };

@@ -639,6 +639,14 @@ finish_mesh(parser *P, lexer *L, pmi_shape *s, const float *N, pmi_src at)
 				}
 		}
 	}
+	if (N && s->nv && !s->n) {
+		/* Kept as the shading normals pm interpolates. */
+		if (!(s->n = malloc(3 * s->nv * sizeof *s->n))) {
+			pmi_shape_free(s);
+			return pm_seterr(P->err, "out of memory");
+		}
+		memcpy(s->n, N, 3 * s->nv * sizeof *s->n);
+	}
 	pmi_shape_xform(s, P->gs.ctm, P->gs.rev);
 	if (P->gs.area) {
 		double A = 0, amin = INFINITY, amax = 0;
@@ -1225,7 +1233,7 @@ static int
 copy_shape(pmi_shape *dst, const pmi_shape *src)
 {
 	*dst = *src;
-	dst->v = dst->uv = NULL;
+	dst->v = dst->uv = dst->n = NULL;
 	dst->idx = dst->start = NULL;
 	if (src->kind != PMI_SHAPE_MESH)
 		return 0;
@@ -1235,6 +1243,11 @@ copy_shape(pmi_shape *dst, const pmi_shape *src)
 	memcpy(dst->v, src->v, src->nv * 3 * sizeof *dst->v);
 	if (src->uv)
 		memcpy(dst->uv, src->uv, src->nv * 2 * sizeof *dst->uv);
+	if (src->n) {
+		if (!(dst->n = malloc(src->nv * 3 * sizeof *dst->n)))
+			return -1;
+		memcpy(dst->n, src->n, src->nv * 3 * sizeof *dst->n);
+	}
 	memcpy(dst->start, src->start, (src->nface + 1) * sizeof *dst->start);
 	memcpy(dst->idx, src->idx, nc * sizeof *dst->idx);
 	return 0;

@@ -575,12 +575,14 @@ put_f32(FILE *f, float x)
 
 /* The mesh with equal positions welded (so a closed surface whose file
  * repeats vertices at uv seams is a closed solid to pm; with_uv welds
- * only where (u, v) are equal too, as a texture needs) and faces of no
- * area dropped, as a binary PLY in memory. */
+ * only where (u, v) are equal too, as a texture needs, and shading
+ * normals only where they are equal) and faces of no area dropped, as a
+ * binary PLY in memory. */
 static int
 mesh_ply(wctx *w, const pmi_shape *s, int with_uv, char **buf, size_t *len, size_t *kept)
 {
-	enum { K = 5 };   /* x y z u v */
+	enum { K = 8 };   /* x y z u v nx ny nz */
+	int with_n = s->n != NULL;
 	size_t cap = 1;
 	while (cap < 2 * s->nv + 16)
 		cap <<= 1;
@@ -597,13 +599,17 @@ mesh_ply(wctx *w, const pmi_shape *s, int with_uv, char **buf, size_t *len, size
 	for (size_t i = 0; i < cap; i++)
 		slot[i] = -1;
 	for (size_t i = 0; i < s->nv; i++) {
-		float p[K] = { s->v[3 * i], s->v[3 * i + 1], s->v[3 * i + 2], 0, 0 };
+		float p[K] = { s->v[3 * i], s->v[3 * i + 1], s->v[3 * i + 2], 0, 0, 0, 0, 0 };
 		if (with_uv) {
 			p[3] = s->uv[2 * i];
 			p[4] = s->uv[2 * i + 1];
 		}
-		if (w->mirror)
+		if (with_n)
+			memcpy(p + 5, s->n + 3 * i, 3 * sizeof *p);
+		if (w->mirror) {
 			p[0] = -p[0];
+			p[5] = -p[5];
+		}
 		for (int c = 0; c < K; c++)
 			if (p[c] == 0)
 				p[c] = 0;   /* -0 and +0 weld */
@@ -651,12 +657,18 @@ mesh_ply(wctx *w, const pmi_shape *s, int with_uv, char **buf, size_t *len, size
 		}
 	}
 	fprintf(f, "ply\nformat binary_little_endian 1.0\ncomment pm-import\nelement vertex %zu\n"
-	        "property float x\nproperty float y\nproperty float z\n%selement face %zu\n"
+	        "property float x\nproperty float y\nproperty float z\n%s%selement face %zu\n"
 	        "property list uchar uint vertex_indices\nend_header\n", nu,
+	        with_n ? "property float nx\nproperty float ny\nproperty float nz\n" : "",
 	        with_uv ? "property float u\nproperty float v\n" : "", nf + nfan);
-	for (size_t i = 0; i < nu; i++)
-		for (int c = 0; c < (with_uv ? 5 : 3); c++)
+	for (size_t i = 0; i < nu; i++) {
+		for (int c = 0; c < 3; c++)
 			put_f32(f, pv[K * i + c]);
+		for (int c = 5; c < (with_n ? 8 : 5); c++)
+			put_f32(f, pv[K * i + c]);
+		for (int c = 3; c < (with_uv ? 5 : 3); c++)
+			put_f32(f, pv[K * i + c]);
+	}
 	for (size_t fi = 0; fi < s->nface; fi++) {
 		if (!keep[fi])
 			continue;

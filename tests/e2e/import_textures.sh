@@ -1,8 +1,9 @@
-# import_textures.sh — pbrt-v4 textures through pm-import, read back from
-# a floor lit by a distant light of irradiance pi from straight above (so
-# a diffuse floor reads its albedo): a checkerboard's two squares, the same
-# through a "scale" texture, and an 8-bit image texture decoded from sRGB;
-# the image is copied beside the scene.
+# import_textures.sh — pbrt-v4 textures and shading normals through
+# pm-import, read back from a floor lit by a distant light of irradiance pi
+# from straight above (so a diffuse floor reads its albedo): a
+# checkerboard's two squares, the same through a "scale" texture, an 8-bit
+# image texture decoded from sRGB (the image copied beside the scene), and
+# vertex normals N tilted 60 degrees halving the floor's reading.
 . "$PM_TOP/tests/lib.sh"
 stat="$PM_BIN/../tests/tools/exrstat"
 win() { "$stat" --window "$2" "$1" | sed -n "s/^$3: //p"; }
@@ -57,3 +58,23 @@ sed 's/grey.pgm/none.pgm/' im.pbrt >miss.pbrt
 pm-import miss.pbrt -o miss/scene.pms 2>miss.err
 check "a missing image is noted with the Texture's line" grep -q 'miss.pbrt:6: image .*none.pgm.* cannot be read' miss.err
 check "... and the scene is written without it" grep -q '^material .* diffuse albedo 0.5 0.5 0.5' miss/scene.pms
+
+# Vertex normals: the floor's N tilted 60 degrees about z (and turned by a
+# Rotate the transform carries them through) shade it as a surface at 60
+# degrees to the light: rho cos 60 = 0.4 for rho 0.8.
+{ echo 'LookAt 0 2 0  0 0 0  0 0 1'
+  echo 'Camera "perspective" "float fov" [ 40 ]'
+  echo 'Film "rgb" "integer xresolution" [ 33 ] "integer yresolution" [ 33 ] "string filename" "out.exr"'
+  echo 'WorldBegin'
+  echo 'LightSource "distant" "point3 from" [ 0 1 0 ] "point3 to" [ 0 0 0 ] "rgb L" [ 3.14159265358979 3.14159265358979 3.14159265358979 ]'
+  echo 'Material "diffuse" "rgb reflectance" [ 0.8 0.8 0.8 ]'
+  echo 'Rotate 90 0 1 0'
+  echo 'Shape "trianglemesh" "point3 P" [ -1 0 -1  1 0 -1  1 0 1  -1 0 1 ] "integer indices" [ 0 2 1  0 3 2 ]'
+  echo '  "normal N" [ 0.866025404 0.5 0  0.866025404 0.5 0  0.866025404 0.5 0  0.866025404 0.5 0 ]'
+} >nrm.pbrt
+sed '/normal N/d' nrm.pbrt >flat.pbrt
+run nrm
+run flat
+num_near "vertex normals 60 degrees off the light: rho cos 60" "$(win nrm.exr 0,0,33,33 mean)" 0.4 1e-5
+num_near "the same floor without N: rho" "$(win flat.exr 0,0,33,33 mean)" 0.8 1e-5
+check "the mesh file carries nx ny nz" grep -aq '^property float nx$' "nrm/$(sed -n 's/^mesh \([^ ]*\) .*/\1/p' nrm/scene.pms)"
