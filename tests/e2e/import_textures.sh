@@ -78,3 +78,36 @@ run flat
 num_near "vertex normals 60 degrees off the light: rho cos 60" "$(win nrm.exr 0,0,33,33 mean)" 0.4 1e-5
 num_near "the same floor without N: rho" "$(win flat.exr 0,0,33,33 mean)" 0.8 1e-5
 check "the mesh file carries nx ny nz" grep -aq '^property float nx$' "nrm/$(sed -n 's/^mesh \([^ ]*\) .*/\1/p' nrm/scene.pms)"
+
+# Mitsuba 3: a checkerboard (color0 0.8, color1 0.2, squares half a unit
+# of uv) on a rectangle (uv (x + 1) / 2, (y + 1) / 2), by <ref> to a
+# top-level texture; the same directional light (irradiance pi).
+mck() {
+	cat <<XML
+<scene version="3.0.0">
+	<sensor type="perspective">
+		<float name="fov" value="40"/>
+		<transform name="to_world"><lookat origin="0, 2, 0" target="0, 0, 0" up="0, 0, 1"/></transform>
+		<film type="hdrfilm"><integer name="width" value="33"/><integer name="height" value="33"/></film>
+	</sensor>
+	<texture type="checkerboard" id="ck"><rgb name="color0" value="0.8"/><rgb name="color1" value="0.2"/></texture>
+	<emitter type="directional"><vector name="direction" x="0" y="-1" z="0"/><rgb name="irradiance" value="3.14159265358979"/></emitter>
+	<shape type="rectangle">
+		<transform name="to_world"><rotate x="1" angle="-90"/></transform>
+		<bsdf type="diffuse">$1</bsdf>
+	</shape>
+</scene>
+XML
+}
+mck '<ref name="reflectance" id="ck"/>' >mck.xml
+mck '<texture type="checkerboard" name="reflectance"><rgb name="color0" value="0.8"/><rgb name="color1" value="0.2"/></texture>' >mck2.xml
+for s in mck mck2; do
+	pm-import -q $s.xml -o $s/scene.pms 2>$s.err
+	check "$s: imports ($(head -c 200 $s.err))" test -s $s/scene.pms
+	pm-render -q -e path -p 4 $s/scene.pms -o $s.exr
+	set -- $(quads $s)
+	num_near "Mitsuba $s: a square reads color0 (0.8)" "$(printf '%s\n' "$@" | sort -g | tail -n 1)" 0.8 1e-5
+	num_near "Mitsuba $s: a square reads color1 (0.2)" "$(printf '%s\n' "$@" | sort -g | head -n 1)" 0.2 1e-5
+	num_near "Mitsuba $s: diagonal squares alike" "$1" "$4" 1e-6
+done
+check "Mitsuba's checkerboard: pm's scale 2 2" grep -q '^texture t0 checker .* scale 2 2 offset 0 0' mck/scene.pms
