@@ -111,3 +111,47 @@ for s in mck mck2; do
 	num_near "Mitsuba $s: diagonal squares alike" "$1" "$4" 1e-6
 done
 check "Mitsuba's checkerboard: pm's scale 2 2" grep -q '^texture t0 checker .* scale 2 2 offset 0 0' mck/scene.pms
+
+# OBJ + MTL map_Kd: a 1 x 2 image, grey 128 on its top row and black below,
+# on the left square with vt (0.5, 0.75) (pm and OBJ: v = 0 is the bottom
+# row), white Kd 1 on the right square, both under a lamp (Ke) centred
+# above: left / right = the top texel's sRGB decoding 0.2158605.
+printf 'P2\n1 2\n255\n128\n0\n' >tb.pgm
+cat >t.mtl <<'MTL'
+newmtl tex
+Kd 1 1 1
+map_Kd tb.pgm
+newmtl white
+Kd 1 1 1
+newmtl lamp
+Kd 0 0 0
+Ke 1 1 1
+MTL
+cat >t.obj <<'OBJ'
+mtllib t.mtl
+v -2 0 -1
+v -0.2 0 -1
+v -0.2 0 1
+v -2 0 1
+v 0.2 0 -1
+v 2 0 -1
+v 2 0 1
+v 0.2 0 1
+v -1 2 -1
+v 1 2 -1
+v 1 2 1
+v -1 2 1
+vt 0.5 0.75
+usemtl tex
+f 4/1 3/1 2/1 1/1
+usemtl white
+f 8 7 6 5
+usemtl lamp
+f 9 10 11 12
+OBJ
+pm-import -q t.obj --camera 'eye 0 1 3 look 0 0 0 up 0 1 0 fov 60' --size 32 16 -o obj/scene.pms 2>obj.err
+check "OBJ with map_Kd imports ($(head -c 200 obj.err))" test -s obj/scene.pms
+check "map_Kd is pm's texture (albedo tex)" grep -q '^material .* diffuse albedo tex t0' obj/scene.pms
+pm-render -q -e path -p 64 obj/scene.pms -o obj.exr
+l=$(win obj.exr 4,8,12,14 mean); r=$(win obj.exr 20,8,28,14 mean)
+num_near "map_Kd: textured / white = the top texel's 0.2158605" "$(awk -v l="$l" -v r="$r" 'BEGIN { print l / r }')" 0.2158605 0.01
