@@ -1,7 +1,7 @@
 /* write.c — the description (desc.h) to a pm scene (write.h). The rules
  * that map other renderers' models onto pm's live here, one function each
- * for the camera, materials and lights, so a new pm model (textures, more
- * lights) changes one function. */
+ * for the camera, materials, textures and lights, so a new pm model
+ * changes one function. Images a scene uses are copied beside it. */
 #include <errno.h>
 #include <math.h>
 #include <stdio.h>
@@ -786,7 +786,9 @@ write_shape(wctx *w, const pmi_shape *s, FILE *f, const pm_mat *pmm)
 		int emits = s->emit[0] > 0 || s->emit[1] > 0 || s->emit[2] > 0;
 		if (w->d->mats[s->mat].tex > 0 && w->tex_state[w->d->mats[s->mat].tex - 1] > 0)
 			pmi_note_add(w->d, s->src, "textured sphere: pm's spheres have no (u, v), the texture is read at (0, 0)");
-		fprintf(f, "sphere %s %.9g %.9g %.9g %.9g subdiv %d\n", pmm->name, c[0], c[1], c[2], s->radius,
+		/* smooth: shaded with the true sphere's normals, as pbrt-v4 and
+		 * Mitsuba 3 shade their analytic spheres. */
+		fprintf(f, "sphere %s %.9g %.9g %.9g %.9g subdiv %d smooth\n", pmm->name, c[0], c[1], c[2], s->radius,
 		        emits ? 5 : 4);
 		return 1;
 	}
