@@ -1012,6 +1012,11 @@ do_light(parser *P, lexer *L, const char *type, plist *pl, pmi_src at)
 				return pmi_err(P->d, at, P->err, "infinite: file name too long");
 			l->equal_area = 1;
 			col[0] = col[1] = col[2] = 1;
+			/* The image's frame: the light's transform. */
+			l->has_rot = 1;
+			for (int i = 0; i < 3; i++)
+				for (int k = 0; k < 3; k++)
+					l->rot[i][k] = P->gs.ctm.m[i][k];
 		}
 		/* pbrt-v4: illuminance sets scale so the upward hemisphere
 		 * receives it; a constant sky of L gives pi L. */

@@ -14,6 +14,7 @@
 #include "base/fnv.h"
 #include "base/vec.h"
 #include "import/write.h"
+#include "scene/imagefile.h"
 #include "scene/scene.h"
 
 /* pm's Blinn exponent for a microfacet roughness alpha: the Blinn lobe of
@@ -439,6 +440,111 @@ axis_angle(const double r[3][3], double axis[3], double *deg)
 	return 0;
 }
 
+static int write_file(wctx *w, const char *path, const char *buf, size_t len);
+static int remember(char ***arr, size_t *n, const char *s);
+static void put_f32(FILE *f, float x);
+
+/* pbrt-v4's equal-area octahedral map (Clarberg 2008): the point of the
+ * unit square, row 0 at the top, that direction d (light space, +z the
+ * square's centre) falls on. */
+static void
+sphere_to_square(const double d[3], double *u, double *v)
+{
+	double x = fabs(d[0]), y = fabs(d[1]), z = fabs(d[2]);
+	double r = sqrt(fmax(0, 1 - z)), a = fmax(x, y), b = fmin(x, y);
+	double phi = a == 0 ? 0 : atan(b / a) * 2 / PM_PI;
+	if (x < y)
+		phi = 1 - phi;
+	double vv = phi * r, uu = r - vv;
+	if (d[2] < 0) {
+		double t = uu;
+		uu = 1 - vv;
+		vv = 1 - t;
+	}
+	uu = copysign(uu, d[0]);
+	vv = copysign(vv, d[1]);
+	*u = 0.5 * (uu + 1);
+	*v = 0.5 * (vv + 1);
+}
+
+/* pbrt-v4's equal-area sky image resampled (nearest texel) into the
+ * lat-long map pm reads, 2N x N for an N x N square, in pm's world (the
+ * light's rotation and the world's mirror applied), written beside the
+ * scene as a PFM. 1 (noted) if it cannot be read or is not square. */
+static int
+equal_area_sky(wctx *w, const pmi_light *l, char *name, size_t n)
+{
+	pm_rgbimage im;
+	pm_error e;
+	pmi_mat4 a = pmi_identity(), inv;
+
+	if (pm_rgbimage_read(l->map, &im, &e)) {
+		pmi_note_add(w->d, l->src, "environment image: %s: dropped", e.msg);
+		return 1;
+	}
+	if (im.w != im.h) {
+		pmi_note_add(w->d, l->src, "environment image '%s' is %d x %d, not pbrt-v4's equal-area square: dropped",
+		             l->map, im.w, im.h);
+		pm_rgbimage_free(&im);
+		return 1;
+	}
+	for (int i = 0; i < 3; i++)
+		for (int k = 0; k < 3; k++)
+			a.m[i][k] = l->rot[i][k];
+	if (pmi_invert(a, &inv)) {
+		pm_rgbimage_free(&im);
+		pmi_note_add(w->d, l->src, "environment image under a singular transform: dropped");
+		return 1;
+	}
+	int N = im.w, W = 2 * N, H = N;
+	char *buf = NULL;
+	size_t len = 0;
+	FILE *f = open_memstream(&buf, &len);
+	if (!f) {
+		pm_rgbimage_free(&im);
+		return pm_seterr(w->err, "out of memory");
+	}
+	fprintf(f, "PF\n%d %d\n-1\n", W, H);
+	/* PFM rows run bottom to top. */
+	for (int j = H - 1; j >= 0; j--)
+		for (int i = 0; i < W; i++) {
+			double phi = 2 * PM_PI * (i + 0.5) / W, th = PM_PI * (j + 0.5) / H;
+			double d[3] = { sin(phi) * sin(th), cos(th), -cos(phi) * sin(th) }, dl[3], u, v;
+			if (w->mirror)
+				d[0] = -d[0];
+			pmi_xform_vector(inv, d, dl);
+			double len2 = sqrt(dl[0] * dl[0] + dl[1] * dl[1] + dl[2] * dl[2]);
+			for (int c = 0; c < 3; c++)
+				dl[c] /= len2;
+			sphere_to_square(dl, &u, &v);
+			int x = (int)(u * N), y = (int)(v * N);
+			x = x < 0 ? 0 : x >= N ? N - 1 : x;
+			y = y < 0 ? 0 : y >= N ? N - 1 : y;
+			for (int c = 0; c < 3; c++)
+				put_f32(f, im.px[3 * ((size_t)y * N + x) + c]);
+		}
+	pm_rgbimage_free(&im);
+	if (fclose(f)) {
+		free(buf);
+		return pm_seterr(w->err, "out of memory");
+	}
+	snprintf(name, n, "%s-%016llx.pfm", w->stem, (unsigned long long)pm_fnv1a(PM_FNV_OFFSET, buf, len));
+	char path[4700];
+	snprintf(path, sizeof path, "%s%s", w->dir, name);
+	int seen = 0;
+	for (size_t i = 0; i < w->nmeshes; i++)
+		if (!strcmp(w->meshes[i], name))
+			seen = 1;
+	if (!seen && (write_file(w, path, buf, len) || remember(&w->meshes, &w->nmeshes, name))) {
+		free(buf);
+		return w->err->msg[0] ? -1 : pm_seterr(w->err, "out of memory");
+	}
+	free(buf);
+	pmi_note_add(w->d, l->src, "environment image '%s': pbrt-v4's equal-area square resampled to a %d x %d "
+	             "lat-long map (nearest texel)", l->map, W, H);
+	return 0;
+}
+
 static int
 write_lights(wctx *w, FILE *f)
 {
@@ -509,8 +615,14 @@ write_lights(wctx *w, FILE *f)
 				char name[512];
 				double axis[3], deg = 0, sc = l->map_scale > 0 ? l->map_scale : 1;
 				if (l->equal_area) {
-					pmi_note_add(w->d, l->src, "environment image '%s' is pbrt-v4's equal-area square; pm reads "
-					             "lat-long maps only: dropped", l->map);
+					int r = equal_area_sky(w, l, name, sizeof name);
+					if (r < 0)
+						return -1;
+					if (r > 0)
+						break;
+					fprintf(f, "envlight image %s scale %.9g\n", name, sc);
+					nenv++;
+					n++;
 					break;
 				}
 				if (w->mirror) {

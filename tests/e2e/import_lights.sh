@@ -3,7 +3,8 @@
 # each read back from a diffuse floor against its closed form: a distant
 # light of irradiance E at angle theta gives rho E cos(theta) / pi, a spot
 # of intensity I at height h gives rho I / (pi h^2) on its axis and 0
-# outside its cone, a constant sky of radiance L gives rho L.
+# outside its cone, a constant sky of radiance L gives rho L; pbrt's
+# equal-area image sky, resampled to lat-long, lights the floor as turned.
 . "$PM_TOP/tests/lib.sh"
 stat="$PM_BIN/../tests/tools/exrstat"
 win() { "$stat" --window "$2" "$1" | sed -n "s/^$3: //p"; }
@@ -83,10 +84,20 @@ num_near "pbrt infinite L x scale: a floor reads rho L" "$(win sky.exr 0,0,33,33
 num_near "Mitsuba constant radiance: a floor reads rho L" "$(win msky.exr 0,0,33,33 mean)" 1 0.01
 num_near "pbrt infinite illuminance 2 pi: L = 2, floor reads 1" "$(win skylux.exr 0,0,33,33 mean)" 1 0.01
 
-# pbrt-v4's image skies are equal-area squares pm does not read: noted and
-# dropped with the file and line, the scene still written with its spot.
-printf 'P3\n1 1\n255\n255 255 255\n' >sky.ppm
-{ cat spot.pbrt; echo 'LightSource "infinite" "string filename" "sky.ppm"'; } >eq.pbrt
-pm-import eq.pbrt -o eq/scene.pms 2>eq.err
-check "an equal-area sky image is noted with its line" grep -q 'eq.pbrt:8: .*equal-area' eq.err
-check "... and the scene keeps its other light" grep -q '^spotlight' eq/scene.pms
+# pbrt-v4's image skies are equal-area octahedral squares, resampled into
+# pm's lat-long map: a 64 x 64 image of radiance 1 inside the diamond
+# |u'| + |v'| < 1 (the light's +z hemisphere), 0 outside (texels centred
+# on the edge 0.5, sRGB 188). Turned by
+# Rotate -90 1 0 0 (+z up) the floor sees a sky of 1 and reads rho = 0.5;
+# unturned, the bright half is sideways and lights half the floor's
+# cosine-weighted hemisphere: 0.25.
+awk 'BEGIN { print "P2\n64 64\n255"; for (y = 0; y < 64; y++) for (x = 0; x < 64; x++) {
+	u = 2 * (x + 0.5) / 64 - 1; v = 2 * (y + 0.5) / 64 - 1; if (u < 0) u = -u; if (v < 0) v = -v
+	print (u + v < 0.999 ? 255 : u + v < 1.001 ? 188 : 0) } }' >eqsky.pgm
+pbrt 2 'AttributeBegin Rotate -90 1 0 0 LightSource "infinite" "string filename" "eqsky.pgm" AttributeEnd' >equp.pbrt
+pbrt 2 'LightSource "infinite" "string filename" "eqsky.pgm"' >eqside.pbrt
+for s in equp eqside; do run $s 16; done
+num_near "equal-area sky, +z turned up: the floor reads rho" "$(win equp.exr 0,0,33,33 mean)" 0.5 0.01
+num_near "equal-area sky unturned: half the hemisphere, rho / 2" "$(win eqside.exr 0,0,33,33 mean)" 0.25 0.01
+pm-import eqside.pbrt -o eqside/scene.pms 2>eqside.err
+check "the resampling is noted with its line" grep -q 'eqside.pbrt:7: .*equal-area square resampled' eqside.err
