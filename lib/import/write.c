@@ -444,6 +444,26 @@ static int write_file(wctx *w, const char *path, const char *buf, size_t len);
 static int remember(char ***arr, size_t *n, const char *s);
 static void put_f32(FILE *f, float x);
 
+/* Writes buf (then freed) beside the scene as STEM-HASH.EXT, named by the
+ * hash of its bytes (name gets it), once however often the scene uses it. */
+static int
+keep_file(wctx *w, const char *ext, char *buf, size_t len, char *name, size_t n)
+{
+	char path[4700];
+	int seen = 0;
+
+	snprintf(name, n, "%s-%016llx%s", w->stem, (unsigned long long)pm_fnv1a(PM_FNV_OFFSET, buf, len), ext);
+	snprintf(path, sizeof path, "%s%s", w->dir, name);
+	for (size_t i = 0; i < w->nmeshes; i++)
+		if (!strcmp(w->meshes[i], name))
+			seen = 1;
+	int r = !seen && (write_file(w, path, buf, len) || remember(&w->meshes, &w->nmeshes, name));
+	free(buf);
+	if (r)
+		return w->err->msg[0] ? -1 : pm_seterr(w->err, "out of memory");
+	return 0;
+}
+
 /* pbrt-v4's equal-area octahedral map (Clarberg 2008): the point of the
  * unit square, row 0 at the top, that direction d (light space, +z the
  * square's centre) falls on. */
@@ -528,18 +548,8 @@ equal_area_sky(wctx *w, const pmi_light *l, char *name, size_t n)
 		free(buf);
 		return pm_seterr(w->err, "out of memory");
 	}
-	snprintf(name, n, "%s-%016llx.pfm", w->stem, (unsigned long long)pm_fnv1a(PM_FNV_OFFSET, buf, len));
-	char path[4700];
-	snprintf(path, sizeof path, "%s%s", w->dir, name);
-	int seen = 0;
-	for (size_t i = 0; i < w->nmeshes; i++)
-		if (!strcmp(w->meshes[i], name))
-			seen = 1;
-	if (!seen && (write_file(w, path, buf, len) || remember(&w->meshes, &w->nmeshes, name))) {
-		free(buf);
-		return w->err->msg[0] ? -1 : pm_seterr(w->err, "out of memory");
-	}
-	free(buf);
+	if (keep_file(w, ".pfm", buf, len, name, n))
+		return -1;
 	pmi_note_add(w->d, l->src, "environment image '%s': pbrt-v4's equal-area square resampled to a %d x %d "
 	             "lat-long map (nearest texel)", l->map, W, H);
 	return 0;
@@ -834,7 +844,7 @@ static int
 copy_image(wctx *w, const char *src, pmi_src at, char *name, size_t n)
 {
 	FILE *in = fopen(src, "rb");
-	char *buf = NULL, path[4700];
+	char *buf = NULL;
 	size_t len = 0, cap = 0, k;
 
 	if (!in) {
@@ -868,17 +878,8 @@ copy_image(wctx *w, const char *src, pmi_src at, char *name, size_t n)
 	char ext[16] = "";
 	if (dot && strlen(dot) < sizeof ext && strcspn(dot, " \t#") == strlen(dot))
 		snprintf(ext, sizeof ext, "%s", dot);
-	snprintf(name, n, "%s-%016llx%s", w->stem, (unsigned long long)pm_fnv1a(PM_FNV_OFFSET, buf, len), ext);
-	snprintf(path, sizeof path, "%s%s", w->dir, name);
-	int seen = 0;
-	for (size_t i = 0; i < w->nmeshes; i++)
-		if (!strcmp(w->meshes[i], name))
-			seen = 1;
-	if (!seen && (write_file(w, path, buf, len) || remember(&w->meshes, &w->nmeshes, name))) {
-		free(buf);
-		return w->err->msg[0] ? -1 : pm_seterr(w->err, "out of memory");
-	}
-	free(buf);
+	if (keep_file(w, ext, buf, len, name, n))
+		return -1;
 	return 0;
 }
 
@@ -904,7 +905,7 @@ write_shape(wctx *w, const pmi_shape *s, FILE *f, const pm_mat *pmm)
 		        emits ? 5 : 4);
 		return 1;
 	}
-	char *buf = NULL, name[512], path[4700];
+	char *buf = NULL, name[512];
 	size_t len = 0, kept = 0;
 	if (s->mat >= 0 && w->d->mats[s->mat].tex > 0 && w->tex_state[w->d->mats[s->mat].tex - 1] > 0 && !s->uv)
 		pmi_note_add(w->d, s->src, "textured shape without (u, v): pm reads its texture at (0, 0)");
@@ -918,18 +919,8 @@ write_shape(wctx *w, const pmi_shape *s, FILE *f, const pm_mat *pmm)
 	}
 	if (kept < s->nface)
 		pmi_note_add(w->d, s->src, "faces of (nearly) zero area dropped");
-	snprintf(name, sizeof name, "%s-%016llx.ply", w->stem,
-	         (unsigned long long)pm_fnv1a(PM_FNV_OFFSET, buf, len));
-	snprintf(path, sizeof path, "%s%s", w->dir, name);
-	int seen = 0;
-	for (size_t i = 0; i < w->nmeshes; i++)
-		if (!strcmp(w->meshes[i], name))
-			seen = 1;
-	if (!seen && (write_file(w, path, buf, len) || remember(&w->meshes, &w->nmeshes, name))) {
-		free(buf);
+	if (keep_file(w, ".ply", buf, len, name, sizeof name))
 		return -1;
-	}
-	free(buf);
 	fprintf(f, "mesh %s %s\n", name, pmm->name);
 	return 1;
 }
