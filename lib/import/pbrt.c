@@ -988,7 +988,7 @@ do_light(parser *P, lexer *L, const char *type, plist *pl, pmi_src at)
 			return -1;
 		l->kind = !strcmp(type, "point") ? PMI_LIGHT_POINT : !strcmp(type, "spot") ? PMI_LIGHT_SPOT : PMI_LIGHT_OTHER;
 		l->cone = pfloat(pl, "coneangle", 30);
-		l->falloff = pfloat(pl, "conedelta", 5);
+		l->falloff = pfloat(pl, "conedeltaangle", 5);
 		/* pbrt-v4: power sets scale so the light emits it: 4 pi I for a
 		 * point light, 2 pi I (1 - (cos a0 + cos a1) / 2) for a spot. */
 		if (power > 0)

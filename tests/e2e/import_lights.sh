@@ -58,7 +58,7 @@ num_near "pbrt distant with illuminance 3: rho E cos / pi" "$(win lux.exr 0,0,33
 # Spot 2 above the floor aiming down, I 8: rho I / (pi h^2) on the axis;
 # the 33 x 33 image spans 120 degrees, its corners outside the cone.
 axis=$(awk -v pi=$pi 'BEGIN { printf "%.9g", 0.5 * 8 / (pi * 4) }')
-pbrt 120 'LightSource "spot" "point3 from" [ 0 2 0 ] "point3 to" [ 0 0 0 ] "rgb I" [ 4 4 4 ] "float scale" 2 "float coneangle" 20 "float conedelta" 10' >spot.pbrt
+pbrt 120 'LightSource "spot" "point3 from" [ 0 2 0 ] "point3 to" [ 0 0 0 ] "rgb I" [ 4 4 4 ] "float scale" 2 "float coneangle" 20 "float conedeltaangle" 10' >spot.pbrt
 mitsuba 120 '<emitter type="spot"><transform name="to_world"><lookat origin="0, 2, 0" target="0, 0, 0" up="0, 0, 1"/></transform><rgb name="intensity" value="8"/><float name="cutoff_angle" value="20"/><float name="beam_width" value="10"/></emitter>' >mspot.xml
 for s in spot mspot; do run $s; done
 num_near "pbrt spot I x scale on its axis: rho I / (pi h^2)" "$(win spot.exr 16,16,17,17 mean)" "$axis" 3e-4
