@@ -20,9 +20,10 @@ pmi_shape_free(pmi_shape *s)
 {
 	free(s->v);
 	free(s->uv);
+	free(s->n);
 	free(s->start);
 	free(s->idx);
-	s->v = s->uv = NULL;
+	s->v = s->uv = s->n = NULL;
 	s->start = s->idx = NULL;
 	s->nv = s->nface = 0;
 }
@@ -38,6 +39,7 @@ pmi_free(pmi_desc *d)
 	free(d->shapes);
 	free(d->mats);
 	free(d->lights);
+	free(d->texs);
 	free(d->notes);
 	memset(d, 0, sizeof *d);
 }
@@ -104,6 +106,17 @@ pmi_add_light(pmi_desc *d, pmi_src src)
 	if (l)
 		l->src = src;
 	return l;
+}
+
+pmi_texture *
+pmi_add_texture(pmi_desc *d, pmi_src src)
+{
+	pmi_texture *t = grow((void **)&d->texs, &d->ntexs, &d->captexs, sizeof *t);
+	if (t) {
+		t->src = src;
+		t->su = t->sv = 1;
+	}
+	return t;
 }
 
 int
@@ -306,6 +319,21 @@ pmi_shape_xform(pmi_shape *s, pmi_mat4 a, int flip)
 		for (int k = 0; k < 3; k++)
 			s->v[3 * i + k] = (float)p[k];
 	}
+	pmi_mat4 inv;
+	if (s->n && pmi_invert(a, &inv) == 0)
+		for (size_t i = 0; i < s->nv; i++) {
+			/* A normal goes by the inverse transpose. */
+			double n[3], l = 0;
+			for (int r = 0; r < 3; r++) {
+				n[r] = 0;
+				for (int c = 0; c < 3; c++)
+					n[r] += inv.m[c][r] * s->n[3 * i + c];
+				l += n[r] * n[r];
+			}
+			l = l > 0 ? 1 / sqrt(l) : 0;
+			for (int r = 0; r < 3; r++)
+				s->n[3 * i + r] = (float)(n[r] * l);
+		}
 	if ((pmi_det3(a) < 0) != (flip != 0))
 		for (size_t f = 0; f < s->nface; f++)
 			reverse_face(s, f);

@@ -57,10 +57,26 @@ typedef struct pmi_material {
 	double eta;          /* index of refraction (dielectric, thin, coat) */
 	double alpha;        /* microfacet roughness alpha, 0 = smooth */
 	double exponent;     /* Phong exponent (PMI_MAT_PHONG) */
-	/* A colour given by an image: until pm has textures the writer uses
-	 * color and reports the file. */
+	/* A colour given by a texture: its name for reports, and tex, 1 +
+	 * the index in texs of its description (0 where the reader could not
+	 * describe it: the writer then uses color and reports the name). The
+	 * texture replaces color (spec for a conductor). */
 	char texture[256];
+	int tex;
 } pmi_material;
+
+/* A texture pm can draw (formats/scene.md, "texture"): an image or a
+ * checkerboard over the surface's (u, v) mapped to (u su + ou, v sv + ov). */
+enum pmi_tex_kind { PMI_TEX_IMAGE, PMI_TEX_CHECKER };
+
+typedef struct pmi_texture {
+	pmi_src src;
+	int kind;
+	char file[4096];      /* image: its path as the reader resolved it */
+	double c[2][3];       /* checker: the colours where floor(u) + floor(v)
+	                       * is even and odd */
+	double su, sv, ou, ov;
+} pmi_texture;
 
 enum pmi_shape_kind { PMI_SHAPE_MESH, PMI_SHAPE_SPHERE };
 
@@ -77,6 +93,7 @@ typedef struct pmi_shape {
 	 * outside). uv may be NULL. */
 	size_t nv, nface;
 	float *v, *uv;
+	float *n;             /* per-vertex shading normals, or NULL */
 	uint32_t *start;      /* nface + 1 entries into idx */
 	uint32_t *idx;
 } pmi_shape;
@@ -91,9 +108,15 @@ typedef struct pmi_light {
 	double dir[3];        /* spot, distant: the direction light travels */
 	double color[3];      /* point, spot: intensity (W/sr); distant: irradiance
 	                       * on a surface facing it; infinite: radiance */
-	double cone, falloff; /* spot: full-intensity half-angle and the
-	                       * falloff's width, degrees */
-	char map[256];        /* infinite: an environment image, or "" */
+	double cone, falloff; /* spot: the cone's half-angle and the width of
+	                       * its falloff inside it, degrees */
+	int linear;           /* spot: falloff linear in the angle (Mitsuba),
+	                       * else smoothstep in the cosine (pbrt-v4) */
+	char map[4096];       /* infinite: an environment image, or "" */
+	int equal_area;       /* map is pbrt-v4's equal-area square, else lat-long */
+	double map_scale;     /* infinite map: multiplies its texels (0 = 1) */
+	int has_rot;          /* infinite map: rot is its to_world's linear part */
+	double rot[3][3];
 } pmi_light;
 
 typedef struct pmi_note {
@@ -108,6 +131,7 @@ typedef struct pmi_desc {
 	pmi_material *mats; size_t nmats, capmats;
 	pmi_shape *shapes; size_t nshapes, capshapes;
 	pmi_light *lights; size_t nlights, caplights;
+	pmi_texture *texs; size_t ntexs, captexs;
 	pmi_note *notes; size_t nnotes, capnotes;
 } pmi_desc;
 
@@ -121,6 +145,7 @@ int pmi_file(pmi_desc *d, const char *path);
 pmi_material *pmi_add_material(pmi_desc *d, pmi_src src);
 pmi_shape *pmi_add_shape(pmi_desc *d, pmi_src src);
 pmi_light *pmi_add_light(pmi_desc *d, pmi_src src);
+pmi_texture *pmi_add_texture(pmi_desc *d, pmi_src src);   /* scale 1 1, offset 0 0 */
 void pmi_shape_free(pmi_shape *s);
 
 /* Records what was approximated or dropped. The same message noted again

@@ -43,8 +43,9 @@ typedef struct mreader {
 	int ndefs;
 	struct { char *id; int mat; } *bsdfs;
 	int nbsdfs;
-	struct { char *id; char file[256]; } *texs;
+	struct { char *id; char file[256]; int desc; } *texs;
 	int ntexs;
+	int last_tex;        /* 1 + the desc texture pcolor last met, or 0 */
 	int default_mat;
 	const char *open_files[MAX_DEPTH];
 	int nopen;
@@ -278,6 +279,61 @@ pbool(mreader *M, const xnode *n, const char *name)
 	return v && !strcmp(v, "true");
 }
 
+static int pcolor(mreader *M, const xnode *n, const char *name, double out[3], char *tex, size_t ntex);
+static int resolve(mreader *M, const char *fn, char *out, size_t n);
+
+/* A texture node pm can draw as a description texture: bitmap and
+ * checkerboard (Mitsuba's squares are half a unit: pm's scale 2 2).
+ * Returns 1 + its index, 0 for others (the constant colour is used and
+ * reported), -1 on error. A to_uv transform is dropped with a note. */
+static int
+describe_texture(mreader *M, const xnode *n)
+{
+	const char *type = attr(M, n, "type");
+	pmi_texture t;
+
+	memset(&t, 0, sizeof t);
+	t.su = t.sv = 1;
+	if (!type)
+		return 0;
+	if (!strcmp(type, "bitmap")) {
+		const char *fn = pstring(M, n, "filename");
+		if (!fn)
+			return pmi_err(M->d, n->src, M->err, "bitmap: no filename");
+		if (resolve(M, fn, t.file, sizeof t.file))
+			return pmi_err(M->d, n->src, M->err, "bitmap: file name too long");
+		t.kind = PMI_TEX_IMAGE;
+		/* Mitsuba's bitmap has v = 0 on its top row, pm's image on its
+		 * bottom row: v becomes 1 - v. */
+		t.sv = -1;
+		t.ov = 1;
+		const char *raw = pstring(M, n, "raw");
+		if (raw && !strcmp(raw, "true"))
+			pmi_note_add(M->d, n->src, "bitmap: raw (no sRGB decoding) not applied");
+	} else if (!strcmp(type, "checkerboard")) {
+		t.kind = PMI_TEX_CHECKER;
+		t.su = t.sv = 2;
+		t.c[0][0] = t.c[0][1] = t.c[0][2] = 0.4;
+		t.c[1][0] = t.c[1][1] = t.c[1][2] = 0.2;
+		int last = M->last_tex;
+		if (pcolor(M, n, "color0", t.c[0], NULL, 0) < 0 || pcolor(M, n, "color1", t.c[1], NULL, 0) < 0)
+			return -1;
+		M->last_tex = last;
+	} else
+		return 0;
+	for (int i = 0; i < n->nkids; i++)
+		if (!strcmp(n->kids[i]->name, "transform")) {
+			pmi_note_add(M->d, n->kids[i]->src, "texture %s: its transform dropped", type);
+			break;
+		}
+	pmi_texture *d = pmi_add_texture(M->d, n->src);
+	if (!d)
+		return pm_seterr(M->err, "out of memory");
+	t.src = n->src;
+	*d = t;
+	return (int)M->d->ntexs;
+}
+
 /* A colour property: rgb (3 numbers or 1), float, spectrum (a constant or
  * wavelength:value pairs, whose mean is taken), or a texture (its file in
  * tex). Returns 1 set, 0 absent, -1 error. */
@@ -293,9 +349,17 @@ pcolor(mreader *M, const xnode *n, const char *name, double out[3], char *tex, s
 	if (!strcmp(p->name, "texture") || !strcmp(p->name, "ref")) {
 		const char *id = attr(M, p, "id");
 		const char *fn = !strcmp(p->name, "texture") ? pstring(M, p, "filename") : NULL;
-		for (int i = 0; !fn && id && i < M->ntexs; i++)
-			if (!strcmp(M->texs[i].id, id))
-				fn = M->texs[i].file;
+		int desc = 0;
+		if (!strcmp(p->name, "texture")) {
+			if ((desc = describe_texture(M, p)) < 0)
+				return -1;
+		} else
+			for (int i = 0; id && i < M->ntexs; i++)
+				if (!strcmp(M->texs[i].id, id)) {
+					fn = M->texs[i].file;
+					desc = M->texs[i].desc;
+				}
+		M->last_tex = desc;
 		if (tex)
 			snprintf(tex, ntex, "%s", fn ? fn : (attr(M, p, "type") ? attr(M, p, "type") : "texture"));
 		return 1;
@@ -629,8 +693,11 @@ add_bsdf(mreader *M, const xnode *b, int *index)
 	const char *id = attr(M, b, "id");
 	snprintf(tmp.name, sizeof tmp.name, "%s", id ? id : "");
 	tmp.eta = 1.5;
+	M->last_tex = 0;
 	if (bsdf_ref(M, b, &tmp))
 		return -1;
+	if (tmp.texture[0])
+		tmp.tex = M->last_tex;
 	if (id)
 		snprintf(tmp.name, sizeof tmp.name, "%s", id);
 	pmi_material *m = pmi_add_material(M->d, b->src);
@@ -688,12 +755,19 @@ shape(mreader *M, const xnode *n)
 				return pmi_err(M->d, n->src, M->err, "%s", e.msg);
 		} else if (pmi_ply_read(path, &s, &N, &e))
 			return pmi_err(M->d, n->src, M->err, "%s", e.msg);
-		free(N);
+		s.n = N;   /* shading normals, carried by to_world below */
 	} else if (!strcmp(type, "rectangle")) {
 		static const float v[] = { -1, -1, 0, 1, -1, 0, 1, 1, 0, -1, 1, 0 };
 		static const uint32_t q[] = { 0, 1, 2, 3 };
-		if (quads(&s, v, 4, q, 1))
+		if (quads(&s, v, 4, q, 1) || !(s.uv = malloc(8 * sizeof *s.uv))) {
+			pmi_shape_free(&s);
 			return pm_seterr(M->err, "out of memory");
+		}
+		/* Mitsuba's rectangle: (u, v) = ((x + 1) / 2, (y + 1) / 2). */
+		for (int i = 0; i < 4; i++) {
+			s.uv[2 * i] = 0.5f * (v[3 * i] + 1);
+			s.uv[2 * i + 1] = 0.5f * (v[3 * i + 1] + 1);
+		}
 	} else if (!strcmp(type, "cube")) {
 		static const float v[] = { -1, -1, -1, 1, -1, -1, 1, 1, -1, -1, 1, -1, -1, -1, 1, 1, -1, 1, 1, 1, 1, -1, 1, 1 };
 		/* counter-clockwise seen from outside */
@@ -804,8 +878,14 @@ emitter(mreader *M, const xnode *n)
 	l->color[0] = l->color[1] = l->color[2] = 1;
 	if (!strcmp(type, "point") || !strcmp(type, "spot")) {
 		l->kind = type[0] == 'p' ? PMI_LIGHT_POINT : PMI_LIGHT_SPOT;
-		if (pcolor(M, n, "intensity", l->color, NULL, 0) < 0 || pfloat(M, n, "cutoff_angle", 20, &l->cone))
+		double beam;
+		if (pcolor(M, n, "intensity", l->color, NULL, 0) < 0 || pfloat(M, n, "cutoff_angle", 20, &l->cone) ||
+		    pfloat(M, n, "beam_width", l->cone * 0.75, &beam))
 			return -1;
+		/* Mitsuba 3: full intensity within beam_width, falling linearly
+		 * in the angle to 0 at cutoff_angle. */
+		l->falloff = l->cone - beam;
+		l->linear = 1;
 	} else if (!strcmp(type, "directional")) {
 		l->kind = PMI_LIGHT_DISTANT;
 		const xnode *dp = prop(M, n, "direction");
@@ -818,7 +898,14 @@ emitter(mreader *M, const xnode *n)
 		if (pcolor(M, n, "radiance", l->color, NULL, 0) < 0)
 			return -1;
 		const char *fn = pstring(M, n, "filename");
-		snprintf(l->map, sizeof l->map, "%s", fn ? fn : "");
+		if (fn && resolve(M, fn, l->map, sizeof l->map))
+			return pmi_err(M->d, n->src, M->err, "envmap: file name too long");
+		if (pfloat(M, n, "scale", 1, &l->map_scale))
+			return -1;
+		l->has_rot = 1;
+		for (int i = 0; i < 3; i++)
+			for (int k = 0; k < 3; k++)
+				l->rot[i][k] = tw.m[i][k];
 	} else
 		l->kind = PMI_LIGHT_OTHER;
 	return 0;
@@ -943,7 +1030,9 @@ scene_children(mreader *M, xnode *root)
 				return pm_seterr(M->err, "out of memory");
 			M->texs = nt;
 			M->texs[M->ntexs].id = strdup(id ? id : "");
-			snprintf(M->texs[M->ntexs++].file, 256, "%s", fn ? fn : "texture");
+			snprintf(M->texs[M->ntexs].file, 256, "%s", fn ? fn : "texture");
+			if ((M->texs[M->ntexs++].desc = describe_texture(M, k)) < 0)
+				return -1;
 		} else if (!strcmp(k->name, "shape"))
 			r = shape(M, k);
 		else if (!strcmp(k->name, "emitter"))

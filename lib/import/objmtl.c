@@ -26,9 +26,12 @@ typedef struct objr {
 	int cur;             /* mtls index, -1 for the default */
 	int default_mat;
 	float *v; size_t nv, capv;   /* nv counts floats: 3 per vertex */
-	float *vt; size_t nvt, capvt;
-	/* the current run of faces, with indices into v */
+	float *vt; size_t nvt, capvt;   /* 2 floats per texture vertex */
+	float *vn; size_t nvn, capvn;   /* 3 floats per normal */
+	/* the current run of faces, with indices into v, and per corner into
+	 * vt and vn (UINT32_MAX for none) */
 	uint32_t *fidx; size_t nidx, capidx;
+	uint32_t *ftx, *fnx; size_t ntx, captx, nnx, capnx;
 	uint32_t *fstart; size_t nface, capface;
 	int run_line;
 	int geometry_only;   /* materials ignored (Mitsuba's obj shapes) */
@@ -129,10 +132,24 @@ read_mtl(objr *R, const char *path, pmi_src from)
 			else if (il == 3 || il == 5)
 				m->alpha = -3;   /* mirror-like if it has no diffuse part */
 		} else if (!strcmp(key, "map_Kd") && sscanf(line, "%*s %3999[^\r\n]", rest) == 1) {
+			/* The file is the last word (options such as -s come first). */
 			const char *fn = strrchr(rest, ' ');
-			snprintf(m->texture, sizeof m->texture, "%.255s", fn ? fn + 1 : rest);
+			fn = fn ? fn + 1 : rest;
+			snprintf(m->texture, sizeof m->texture, "%.255s", fn);
+			if (rest[0] == '-')
+				pmi_note_add(R->d, at, "map_Kd: options dropped (the image used as it is)");
+			pmi_texture *t = pmi_add_texture(R->d, at);
+			if (!t)
+				return pm_seterr(R->err, "out of memory");
+			t->kind = PMI_TEX_IMAGE;
+			const char *sl = strrchr(path, '/');
+			if (snprintf(t->file, sizeof t->file, "%.*s%s", fn[0] == '/' || !sl ? 0 : (int)(sl - path + 1), path, fn) >=
+			    (int)sizeof t->file)
+				return pmi_err(R->d, at, R->err, "map_Kd: file name too long");
+			m = &R->d->mats[R->mtls[R->nmtls - 1].index];
+			m->tex = (int)R->d->ntexs;
 		} else if (!strncmp(key, "map_", 4) || !strcmp(key, "bump") || !strcmp(key, "disp") || !strcmp(key, "refl"))
-			pmi_note_add(R->d, at, "%s: pm has no textures yet, dropped", key);
+			pmi_note_add(R->d, at, "%s: pm has no model for it, dropped", key);
 	}
 	fclose(f);
 	/* Settle each material's kind now that all its lines are read. */
@@ -183,6 +200,38 @@ end_run(objr *R, int file)
 	s->nv = nv;
 	memcpy(s->start, R->fstart, (R->nface + 1) * sizeof *s->start);
 	free(map);
+	/* Texture coordinates and normals belong to corners: where the run
+	 * has them, every corner gets a vertex of its own (the writer welds
+	 * those that agree). Normals are kept only if every corner has one. */
+	int has_t = 0, has_n = 1;
+	for (size_t i = 0; i < R->nidx; i++) {
+		has_t |= R->ftx[i] != UINT32_MAX;
+		has_n &= R->fnx[i] != UINT32_MAX;
+	}
+	if (has_t || has_n) {
+		float *v = malloc((R->nidx ? R->nidx : 1) * 3 * sizeof *v);
+		float *uv = has_t ? calloc((R->nidx ? R->nidx : 1) * 2, sizeof *uv) : NULL;
+		float *n = has_n ? malloc((R->nidx ? R->nidx : 1) * 3 * sizeof *n) : NULL;
+		if (!v || (has_t && !uv) || (has_n && !n)) {
+			free(v); free(uv); free(n);
+			return pm_seterr(R->err, "out of memory");
+		}
+		for (size_t i = 0; i < R->nidx; i++) {
+			memcpy(v + 3 * i, R->v + 3 * (size_t)R->fidx[i], 3 * sizeof *v);
+			if (has_t && R->ftx[i] != UINT32_MAX)
+				memcpy(uv + 2 * i, R->vt + 2 * (size_t)R->ftx[i], 2 * sizeof *uv);
+			if (has_n)
+				memcpy(n + 3 * i, R->vn + 3 * (size_t)R->fnx[i], 3 * sizeof *n);
+			s->idx[i] = (uint32_t)i;
+		}
+		free(s->v);
+		free(s->uv);
+		s->v = v;
+		s->uv = uv;
+		s->n = n;
+		s->nv = R->nidx;
+	}
+	R->ntx = R->nnx = 0;
 	if (R->cur >= 0) {
 		s->mat = R->mtls[R->cur].index;
 		memcpy(s->emit, R->mtls[R->cur].ke, sizeof s->emit);
@@ -260,9 +309,24 @@ read_obj(const char *path, pmi_desc *d, pm_error *err, int geometry_only)
 				R.run_line = ln;
 			for (char *t = strtok_r(tok, " \t\r\n", &save); t; t = strtok_r(NULL, " \t\r\n", &save)) {
 				char *end;
-				long v = strtol(t, &end, 10);
+				long v = strtol(t, &end, 10), vt = 0, vn = 0;
 				if (end == t || (*end && *end != '/')) {
 					r = pmi_err(d, at, err, "f: bad vertex '%s'", t);
+					break;
+				}
+				/* v/t, v//n, v/t/n */
+				if (*end == '/' && end[1] != '/')
+					vt = strtol(end + 1, &end, 10);
+				if (*end == '/')
+					vn = strtol(end + 1, &end, 10);
+				long ti = vt < 0 ? (long)(R.nvt / 2) + vt : vt - 1, ni = vn < 0 ? (long)(R.nvn / 3) + vn : vn - 1;
+				uint32_t tu = vt && ti >= 0 && ti < (long)(R.nvt / 2) ? (uint32_t)ti : UINT32_MAX;
+				uint32_t nu = vn && ni >= 0 && ni < (long)(R.nvn / 3) ? (uint32_t)ni : UINT32_MAX;
+				if ((vt && tu == UINT32_MAX) || (vn && nu == UINT32_MAX))
+					pmi_note_add(d, at, "f: texture or normal index out of range: ignored");
+				if (push((void **)&R.ftx, &R.ntx, &R.captx, sizeof tu, &tu) ||
+				    push((void **)&R.fnx, &R.nnx, &R.capnx, sizeof nu, &nu)) {
+					r = pm_seterr(err, "out of memory");
 					break;
 				}
 				long idx = v < 0 ? (long)nverts + v : v - 1;
@@ -317,7 +381,20 @@ read_obj(const char *path, pmi_desc *d, pm_error *err, int geometry_only)
 				snprintf(mpath, sizeof mpath, "%s%s", t[0] == '/' ? "" : R.dir, t);
 				r = read_mtl(&R, mpath, at);
 			}
-		} else if (!strcmp(key, "vt") || !strcmp(key, "vn") || !strcmp(key, "s") || !strcmp(key, "l") ||
+		} else if (!strcmp(key, "vt") || !strcmp(key, "vn")) {
+			double a[3] = { 0, 0, 0 };
+			int k = sscanf(line, "%*s %lf %lf %lf", &a[0], &a[1], &a[2]), want = key[1] == 't' ? 2 : 3;
+			if (k < (key[1] == 't' ? 1 : 3) || !isfinite(a[0]) || !isfinite(a[1]) || !isfinite(a[2])) {
+				r = pmi_err(d, at, err, "%s: expected %d numbers", key, want);
+				break;
+			}
+			for (int c = 0; c < want && !r; c++) {
+				float x = (float)a[c];
+				if (key[1] == 't' ? push((void **)&R.vt, &R.nvt, &R.capvt, sizeof x, &x)
+				                  : push((void **)&R.vn, &R.nvn, &R.capvn, sizeof x, &x))
+					r = pm_seterr(err, "out of memory");
+			}
+		} else if (!strcmp(key, "s") || !strcmp(key, "l") ||
 		           !strcmp(key, "p") || !strcmp(key, "vp") || !strcmp(key, "usemap") || !strcmp(key, "maplib")) {
 			;
 		} else {
@@ -334,6 +411,9 @@ read_obj(const char *path, pmi_desc *d, pm_error *err, int geometry_only)
 	free(R.mtls);
 	free(R.v);
 	free(R.vt);
+	free(R.vn);
+	free(R.ftx);
+	free(R.fnx);
 	free(R.fidx);
 	free(R.fstart);
 	return r;

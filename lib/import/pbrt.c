@@ -68,6 +68,7 @@ typedef struct texture {
 	int constant;
 	double value[3];
 	char file[256];
+	int desc;            /* 1 + its index in the description's texs, or 0 */
 } texture;
 
 typedef struct object {
@@ -86,6 +87,7 @@ typedef struct parser {
 	named *mats; int nmats;
 	named *coords; int ncoords;
 	texture *tex; int ntex;
+	int last_tex;        /* the desc texture pcolor last returned 2 for */
 	object *objs; int nobjs;
 	int cur_obj;         /* -1 outside ObjectBegin */
 	int depth;
@@ -378,6 +380,7 @@ pcolor(parser *P, lexer *L, plist *pl, const char *name, double out[3], char *te
 				}
 				if (texfile)
 					snprintf(texfile, ntex, "%s", P->tex[i].file[0] ? P->tex[i].file : p->str[0]);
+				P->last_tex = P->tex[i].desc;
 				return 2;
 			}
 		return pmi_err(P->d, at, P->err, "'%s': unknown texture '%s'", name, p->str[0]);
@@ -635,6 +638,14 @@ finish_mesh(parser *P, lexer *L, pmi_shape *s, const float *N, pmi_src at)
 					s->idx[b + k - 1 - i] = t;
 				}
 		}
+	}
+	if (N && s->nv && !s->n) {
+		/* Kept as the shading normals pm interpolates. */
+		if (!(s->n = malloc(3 * s->nv * sizeof *s->n))) {
+			pmi_shape_free(s);
+			return pm_seterr(P->err, "out of memory");
+		}
+		memcpy(s->n, N, 3 * s->nv * sizeof *s->n);
 	}
 	pmi_shape_xform(s, P->gs.ctm, P->gs.rev);
 	if (P->gs.area) {
@@ -977,7 +988,7 @@ do_light(parser *P, lexer *L, const char *type, plist *pl, pmi_src at)
 			return -1;
 		l->kind = !strcmp(type, "point") ? PMI_LIGHT_POINT : !strcmp(type, "spot") ? PMI_LIGHT_SPOT : PMI_LIGHT_OTHER;
 		l->cone = pfloat(pl, "coneangle", 30);
-		l->falloff = pfloat(pl, "conedelta", 5);
+		l->falloff = pfloat(pl, "conedeltaangle", 5);
 		/* pbrt-v4: power sets scale so the light emits it: 4 pi I for a
 		 * point light, 2 pi I (1 - (cos a0 + cos a1) / 2) for a spot. */
 		if (power > 0)
@@ -995,11 +1006,109 @@ do_light(parser *P, lexer *L, const char *type, plist *pl, pmi_src at)
 		l->kind = PMI_LIGHT_INFINITE;
 		if (pcolor(P, L, pl, "L", col, NULL, 0) < 0)
 			return -1;
-		snprintf(l->map, sizeof l->map, "%s", pstring(pl, "filename", ""));
+		const char *fn = pstring(pl, "filename", "");
+		if (fn[0]) {
+			if (resolve_path(P, fn, l->map, sizeof l->map))
+				return pmi_err(P->d, at, P->err, "infinite: file name too long");
+			l->equal_area = 1;
+			col[0] = col[1] = col[2] = 1;
+			/* The image's frame: the light's transform. */
+			l->has_rot = 1;
+			for (int i = 0; i < 3; i++)
+				for (int k = 0; k < 3; k++)
+					l->rot[i][k] = P->gs.ctm.m[i][k];
+		}
+		/* pbrt-v4: illuminance sets scale so the upward hemisphere
+		 * receives it; a constant sky of L gives pi L. */
+		double E = pfloat(pl, "illuminance", -1);
+		if (E > 0 && !fn[0])
+			scale *= E / PM_PI;
+		else if (E > 0)
+			pmi_note_add(P->d, at, "infinite: illuminance with an image not applied (scale %g used)", scale);
+		l->map_scale = scale;
 	} else
 		return pmi_err(P->d, at, P->err, "unknown light '%s'", type);
 	for (int c = 0; c < 3; c++)
 		l->color[c] = col[c] * scale;
+	return 0;
+}
+
+/* ---- textures ---- */
+
+/* The description of a pbrt-v4 texture pm can draw: imagemap and
+ * checkerboard with the "uv" mapping (uscale, vscale, udelta, vdelta are
+ * pm's scale and offset), and scale of one of those by a constant. Others
+ * keep tx->desc 0: the material's constant colour is used and reported. */
+static int
+describe_texture(parser *P, lexer *L, texture *tx, const char *cls, const char *kind, plist *pl, pmi_src at)
+{
+	const char *map = pstring(pl, "mapping", "uv");
+	pmi_texture t;
+
+	memset(&t, 0, sizeof t);
+	t.src = at;
+	t.su = pfloat(pl, "uscale", 1);
+	t.sv = pfloat(pl, "vscale", 1);
+	t.ou = pfloat(pl, "udelta", 0);
+	t.ov = pfloat(pl, "vdelta", 0);
+	if (!strcmp(cls, "scale")) {
+		/* scale: "tex" times "scale", either a texture or a constant. */
+		param *pt = pfind(pl, "tex");
+		double k = pfloat(pl, "scale", 1);
+		if (!pt || strcmp(pt->type, "texture") || pt->nstr != 1 || (pfind(pl, "scale") && strcmp(pfind(pl, "scale")->type, "float")))
+			return 0;
+		for (int i = 0; i < P->ntex; i++)
+			if (!strcmp(P->tex[i].name, pt->str[0]) && P->tex[i].desc) {
+				t = P->d->texs[P->tex[i].desc - 1];
+				if (t.kind == PMI_TEX_CHECKER)
+					for (int c = 0; c < 3; c++)
+						t.c[0][c] *= k, t.c[1][c] *= k;
+				else if (k != 1)
+					pmi_note_add(P->d, at, "scale texture: factor %g on an image dropped (pm images are "
+					             "not scaled)", k);
+				goto add;
+			}
+		return 0;
+	}
+	if (strcmp(map, "uv") != 0) {
+		pmi_note_add(P->d, at, "texture mapping '%s' not mapped: the material's constant colour used", map);
+		return 0;
+	}
+	if (!strcmp(cls, "imagemap")) {
+		const char *fn = pstring(pl, "filename", NULL);
+		if (!fn)
+			return pmi_err(P->d, at, P->err, "imagemap: no \"string filename\"");
+		t.kind = PMI_TEX_IMAGE;
+		if (resolve_path(P, fn, t.file, sizeof t.file))
+			return pmi_err(P->d, at, P->err, "imagemap: file name too long");
+		if (pfloat(pl, "scale", 1) != 1 || pbool(pl, "invert", 0))
+			pmi_note_add(P->d, at, "imagemap: scale/invert dropped (pm images are used as they are)");
+		const char *enc = pstring(pl, "encoding", "sRGB");
+		if (strcmp(enc, "sRGB") != 0)
+			pmi_note_add(P->d, at, "imagemap: encoding '%s' not applied (pm decodes 8-bit images as sRGB)", enc);
+	} else if (!strcmp(cls, "checkerboard")) {
+		if ((int)pfloat(pl, "dimension", 2) != 2) {
+			pmi_note_add(P->d, at, "3D checkerboard not mapped: the material's constant colour used");
+			return 0;
+		}
+		t.kind = PMI_TEX_CHECKER;
+		t.c[0][0] = t.c[0][1] = t.c[0][2] = 1;
+		int r0 = pcolor(P, L, pl, "tex1", t.c[0], NULL, 0), r1 = pcolor(P, L, pl, "tex2", t.c[1], NULL, 0);
+		if (r0 < 0 || r1 < 0)
+			return -1;
+		if (r0 == 2 || r1 == 2) {
+			pmi_note_add(P->d, at, "checkerboard of textures not mapped: the material's constant colour used");
+			return 0;
+		}
+	} else
+		return 0;
+	(void)kind;
+add:;
+	pmi_texture *d = pmi_add_texture(P->d, at);
+	if (!d)
+		return pm_seterr(P->err, "out of memory");
+	*d = t;
+	tx->desc = (int)P->d->ntexs;
 	return 0;
 }
 
@@ -1129,7 +1238,7 @@ static int
 copy_shape(pmi_shape *dst, const pmi_shape *src)
 {
 	*dst = *src;
-	dst->v = dst->uv = NULL;
+	dst->v = dst->uv = dst->n = NULL;
 	dst->idx = dst->start = NULL;
 	if (src->kind != PMI_SHAPE_MESH)
 		return 0;
@@ -1139,6 +1248,11 @@ copy_shape(pmi_shape *dst, const pmi_shape *src)
 	memcpy(dst->v, src->v, src->nv * 3 * sizeof *dst->v);
 	if (src->uv)
 		memcpy(dst->uv, src->uv, src->nv * 2 * sizeof *dst->uv);
+	if (src->n) {
+		if (!(dst->n = malloc(src->nv * 3 * sizeof *dst->n)))
+			return -1;
+		memcpy(dst->n, src->n, src->nv * 3 * sizeof *dst->n);
+	}
 	memcpy(dst->start, src->start, (src->nface + 1) * sizeof *dst->start);
 	memcpy(dst->idx, src->idx, nc * sizeof *dst->idx);
 	return 0;
@@ -1305,11 +1419,17 @@ directive(parser *P, lexer *L, token *t)
 				if (!type)
 					r = pmi_err(P->d, at, P->err, "MakeNamedMaterial '%s': no \"string type\"", a.s);
 				else
-					r = !strcmp(type, "mix") ? make_mix(P, L, m, &pl, at) : make_material(P, L, m, type, &pl, at);
+					P->last_tex = 0;
+				r = !strcmp(type, "mix") ? make_mix(P, L, m, &pl, at) : make_material(P, L, m, type, &pl, at);
+				if (m->texture[0])
+					m->tex = P->last_tex;
 				if (!r && add_named(&P->mats, &P->nmats, a.s, idx, pmi_identity()))
 					r = pm_seterr(P->err, "out of memory");
 			} else {
+				P->last_tex = 0;
 				r = !strcmp(a.s, "mix") ? make_mix(P, L, m, &pl, at) : make_material(P, L, m, a.s, &pl, at);
+				if (m->texture[0])
+					m->tex = P->last_tex;
 				P->gs.mat = idx;
 			}
 		} else if (!strcmp(d, "LightSource"))
@@ -1392,8 +1512,10 @@ directive(parser *P, lexer *L, token *t)
 			tx->constant = 1;
 			tx->value[0] = tx->value[1] = tx->value[2] = 1;
 			r = pcolor(P, L, &pl, "value", tx->value, NULL, 0) < 0 ? -1 : 0;
-		} else
+		} else {
 			snprintf(tx->file, sizeof tx->file, "%s", pstring(&pl, "filename", cls.s));
+			r = describe_texture(P, L, tx, cls.s, kind.s, &pl, at);
+		}
 	} else if (!strcmp(d, "MediumInterface")) {
 		token b, *pk;
 		ARG_STR();

@@ -1,7 +1,7 @@
 /* write.c — the description (desc.h) to a pm scene (write.h). The rules
  * that map other renderers' models onto pm's live here, one function each
- * for the camera, materials and lights, so a new pm model (textures, more
- * lights) changes one function. */
+ * for the camera, materials, textures and lights, so a new pm model
+ * changes one function. Images a scene uses are copied beside it. */
 #include <errno.h>
 #include <math.h>
 #include <stdio.h>
@@ -14,6 +14,7 @@
 #include "base/fnv.h"
 #include "base/vec.h"
 #include "import/write.h"
+#include "scene/imagefile.h"
 #include "scene/scene.h"
 
 /* pm's Blinn exponent for a microfacet roughness alpha: the Blinn lobe of
@@ -76,8 +77,9 @@ typedef struct wctx {
 	char dir[4096], stem[256];
 	char **made;         /* files this call created, removed on failure */
 	size_t nmade;
-	char **meshes;       /* mesh file names the scene uses */
+	char **meshes;       /* mesh and image file names the scene uses */
 	size_t nmeshes;
+	int *tex_state;      /* per desc texture: 0 not yet written, 1 written, -1 dropped */
 } wctx;
 
 static double
@@ -168,9 +170,20 @@ material_line(wctx *w, const pm_mat *pmm, char *line, size_t n, int first)
 	int kind = m->kind;
 
 	snprintf(mname, sizeof mname, m->name[0] ? "material '%s' (%s)" : "material%s (%s)", m->name, m->type);
-	if (first && m->texture[0])
-		pmi_note_add(w->d, m->src, "%s: texture '%s' not mapped (pm has no textures yet): constant %.3g %.3g %.3g",
+	/* A texture pm draws replaces the colour it stands for: tx is the
+	 * words to put where R G B would be. */
+	char tx[32] = "";
+	int textured = m->tex > 0 && w->tex_state[m->tex - 1] > 0;
+	if (textured)
+		snprintf(tx, sizeof tx, "tex t%d", m->tex - 1);
+	if (first && m->texture[0] && !textured)
+		pmi_note_add(w->d, m->src, "%s: texture '%s' not mapped: constant %.3g %.3g %.3g",
 		             mname, m->texture, m->color[0], m->color[1], m->color[2]);
+	if (first && textured && (kind == PMI_MAT_DIELECTRIC || kind == PMI_MAT_THIN || kind == PMI_MAT_INVISIBLE))
+		pmi_note_add(w->d, m->src, "%s: texture '%s' dropped (pm's glass takes none here)", mname, m->texture);
+	if (first && textured && kind == PMI_MAT_COATED)
+		pmi_note_add(w->d, m->src, "%s: texture '%s' used as kd as it is (the coat's share of the base's light "
+		             "applies to constant colours only)", mname, m->texture);
 	if (emits && (kind == PMI_MAT_CONDUCTOR || kind == PMI_MAT_DIELECTRIC || kind == PMI_MAT_THIN ||
 	              kind == PMI_MAT_INVISIBLE)) {
 		if (first)
@@ -189,7 +202,10 @@ material_line(wctx *w, const pm_mat *pmm, char *line, size_t n, int first)
 	case PMI_MAT_DIFFTRANS:
 		for (int c = 0; c < 3; c++)
 			a[c] = clamp01(m->color[c], &cl);
-		snprintf(line, n, "material %s diffuse albedo %.9g %.9g %.9g%s\n", nm, a[0], a[1], a[2], tail);
+		if (textured)
+			snprintf(line, n, "material %s diffuse albedo %s%s\n", nm, tx, tail);
+		else
+			snprintf(line, n, "material %s diffuse albedo %.9g %.9g %.9g%s\n", nm, a[0], a[1], a[2], tail);
 		if (kind == PMI_MAT_DIFFTRANS)
 			snprintf(what, sizeof what, "diffuse reflection kept, diffuse transmission %.3g dropped", m->trans[1]);
 		break;
@@ -204,8 +220,12 @@ material_line(wctx *w, const pm_mat *pmm, char *line, size_t n, int first)
 			a[c] = rho * (1 - f0) * (1 - fi) / (1 - rho * fi);
 			b[c] = f0;
 		}
-		snprintf(line, n, "material %s glossy kd %.9g %.9g %.9g ks %.9g %.9g %.9g exponent %.9g%s\n", nm,
-		         a[0], a[1], a[2], b[0], b[1], b[2], e, tail);
+		if (textured)
+			snprintf(line, n, "material %s glossy kd %s ks %.9g %.9g %.9g exponent %.9g%s\n", nm,
+			         tx, b[0], b[1], b[2], e, tail);
+		else
+			snprintf(line, n, "material %s glossy kd %.9g %.9g %.9g ks %.9g %.9g %.9g exponent %.9g%s\n", nm,
+			         a[0], a[1], a[2], b[0], b[1], b[2], e, tail);
 		snprintf(what, sizeof what, "diffuse under a coat (internal reflectance %.3g) plus a Blinn lobe of "
 		         "F0 = %.3g, exponent %.4g (alpha %.3g)", fi, f0, e, m->alpha);
 		break;
@@ -213,7 +233,15 @@ material_line(wctx *w, const pm_mat *pmm, char *line, size_t n, int first)
 	case PMI_MAT_CONDUCTOR:
 		for (int c = 0; c < 3; c++)
 			b[c] = clamp01(m->spec[c], &cl);
-		if (m->alpha == 0) {
+		if (m->alpha == 0 && textured) {
+			snprintf(line, n, "material %s mirror reflect %s\n", nm, tx);
+			snprintf(what, sizeof what, "mirror of its textured normal-incidence reflectance");
+		} else if (textured) {
+			e = blinn_exponent(m->alpha);
+			snprintf(line, n, "material %s glossy kd 0 0 0 ks %s exponent %.9g%s\n", nm, tx, e, tail);
+			snprintf(what, sizeof what, "Blinn glossy, ks textured (reflectance at normal incidence), "
+			         "exponent %.4g (alpha %.3g)", e, m->alpha);
+		} else if (m->alpha == 0) {
 			snprintf(line, n, "material %s mirror reflect %.9g %.9g %.9g\n", nm, b[0], b[1], b[2]);
 			snprintf(what, sizeof what, "mirror of its normal-incidence reflectance %.3g %.3g %.3g", b[0], b[1], b[2]);
 		} else {
@@ -247,7 +275,16 @@ material_line(wctx *w, const pm_mat *pmm, char *line, size_t n, int first)
 				s = fmin(s, 1 / (a[c] + b[c]));
 		}
 		if (b[0] == 0 && b[1] == 0 && b[2] == 0) {
-			snprintf(line, n, "material %s diffuse albedo %.9g %.9g %.9g%s\n", nm, a[0], a[1], a[2], tail);
+			if (textured)
+				snprintf(line, n, "material %s diffuse albedo %s%s\n", nm, tx, tail);
+			else
+				snprintf(line, n, "material %s diffuse albedo %.9g %.9g %.9g%s\n", nm, a[0], a[1], a[2], tail);
+			break;
+		}
+		if (textured) {
+			/* pm scales a textured kd + ks down to 1 where it exceeds it. */
+			snprintf(line, n, "material %s glossy kd %s ks %.9g %.9g %.9g exponent %.9g%s\n", nm, tx,
+			         b[0], b[1], b[2], m->exponent > 1 ? m->exponent : 1, tail);
 			break;
 		}
 		e = m->exponent > 1 ? m->exponent : 1;
@@ -262,6 +299,41 @@ material_line(wctx *w, const pm_mat *pmm, char *line, size_t n, int first)
 		pmi_note_add(w->d, m->src, "%s: %s", mname, what);
 	if (first && cl)
 		pmi_note_add(w->d, m->src, "%s: colours clamped to [0, 1]", mname);
+}
+
+static int copy_image(wctx *w, const char *src, pmi_src at, char *name, size_t n);
+
+/* Writes texture ti as pm's texture tTI (its image copied beside the
+ * scene) and marks it written, or dropped if its image cannot be read. */
+static int
+texture_line(wctx *w, int ti, FILE *f)
+{
+	const pmi_texture *t = &w->d->texs[ti];
+	char name[512];
+
+	if (t->kind == PMI_TEX_IMAGE) {
+		int r = copy_image(w, t->file, t->src, name, sizeof name);
+		if (r < 0)
+			return -1;
+		if (r > 0) {
+			w->tex_state[ti] = -1;
+			return 0;
+		}
+		fprintf(f, "texture t%d image %s", ti, name);
+	} else {
+		double c[2][3];
+		int cl = 0;
+		for (int k = 0; k < 2; k++)
+			for (int i = 0; i < 3; i++)
+				c[k][i] = clamp01(t->c[k][i], &cl);
+		if (cl)
+			pmi_note_add(w->d, t->src, "checkerboard colours clamped to [0, 1]");
+		fprintf(f, "texture t%d checker %.9g %.9g %.9g  %.9g %.9g %.9g", ti, c[0][0], c[0][1], c[0][2],
+		        c[1][0], c[1][1], c[1][2]);
+	}
+	fprintf(f, " scale %.9g %.9g offset %.9g %.9g\n", t->su, t->sv, t->ou, t->ov);
+	w->tex_state[ti] = 1;
+	return 0;
 }
 
 /* The pm material for a shape: one per source material, emission and
@@ -306,37 +378,286 @@ material_for(wctx *w, const pmi_shape *s, FILE *f)
 	clean[k] = 0;
 	snprintf(p->name, sizeof p->name, "m%zu%s%s", w->nmats, k ? "-" : "", clean);
 	w->nmats++;
+	int ti = w->d->mats[mi].tex - 1;
+	if (ti >= 0 && w->tex_state[ti] == 0 && texture_line(w, ti, f))
+		return NULL;
 	char line[512];
 	material_line(w, p, line, sizeof line, first);
 	fputs(line, f);
 	return p;
 }
 
-/* ---- lights: pm has point lights; the rest waits for them (issue 23) ---- */
+/* ---- lights: pm has them all with pbrt-v4's and Mitsuba 3's units
+ * (formats/scene.md), so each maps one to one ---- */
+
+static int
+positive(const double c[3])
+{
+	return c[0] > 0 || c[1] > 0 || c[2] > 0;
+}
+
+/* The axis and angle (degrees) of the rotation part of r (columns
+ * normalized); -1 if it mirrors or is degenerate. */
+static int
+axis_angle(const double r[3][3], double axis[3], double *deg)
+{
+	double q[3][3];
+	for (int k = 0; k < 3; k++) {
+		double l = sqrt(r[0][k] * r[0][k] + r[1][k] * r[1][k] + r[2][k] * r[2][k]);
+		if (!(l > 0))
+			return -1;
+		for (int i = 0; i < 3; i++)
+			q[i][k] = r[i][k] / l;
+	}
+	double det = q[0][0] * (q[1][1] * q[2][2] - q[1][2] * q[2][1]) - q[0][1] * (q[1][0] * q[2][2] - q[1][2] * q[2][0]) +
+	             q[0][2] * (q[1][0] * q[2][1] - q[1][1] * q[2][0]);
+	if (det < 0)
+		return -1;
+	double c = fmax(-1, fmin(1, 0.5 * (q[0][0] + q[1][1] + q[2][2] - 1)));
+	double a[3] = { q[2][1] - q[1][2], q[0][2] - q[2][0], q[1][0] - q[0][1] };
+	double l = sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]);
+	if (l < 1e-6) {
+		/* 0 or 180 degrees: the axis is the column of q + I with the
+		 * largest norm. */
+		int best = 0;
+		double bn = -1;
+		for (int k = 0; k < 3; k++) {
+			double v[3] = { q[0][k], q[1][k], q[2][k] };
+			v[k] += 1;
+			double n2 = v[0] * v[0] + v[1] * v[1] + v[2] * v[2];
+			if (n2 > bn) {
+				bn = n2;
+				best = k;
+			}
+		}
+		for (int i = 0; i < 3; i++)
+			a[i] = q[i][best] + (i == best);
+		l = sqrt(bn);
+	}
+	for (int i = 0; i < 3; i++)
+		axis[i] = a[i] / l;
+	*deg = acos(c) * 180 / PM_PI;
+	return 0;
+}
+
+static int write_file(wctx *w, const char *path, const char *buf, size_t len);
+static int remember(char ***arr, size_t *n, const char *s);
+static void put_f32(FILE *f, float x);
+
+/* Writes buf (then freed) beside the scene as STEM-HASH.EXT, named by the
+ * hash of its bytes (name gets it), once however often the scene uses it. */
+static int
+keep_file(wctx *w, const char *ext, char *buf, size_t len, char *name, size_t n)
+{
+	char path[4700];
+	int seen = 0;
+
+	snprintf(name, n, "%s-%016llx%s", w->stem, (unsigned long long)pm_fnv1a(PM_FNV_OFFSET, buf, len), ext);
+	snprintf(path, sizeof path, "%s%s", w->dir, name);
+	for (size_t i = 0; i < w->nmeshes; i++)
+		if (!strcmp(w->meshes[i], name))
+			seen = 1;
+	int r = !seen && (write_file(w, path, buf, len) || remember(&w->meshes, &w->nmeshes, name));
+	free(buf);
+	if (r)
+		return w->err->msg[0] ? -1 : pm_seterr(w->err, "out of memory");
+	return 0;
+}
+
+/* pbrt-v4's equal-area octahedral map (Clarberg 2008): the point of the
+ * unit square, row 0 at the top, that direction d (light space, +z the
+ * square's centre) falls on. */
+static void
+sphere_to_square(const double d[3], double *u, double *v)
+{
+	double x = fabs(d[0]), y = fabs(d[1]), z = fabs(d[2]);
+	double r = sqrt(fmax(0, 1 - z)), a = fmax(x, y), b = fmin(x, y);
+	double phi = a == 0 ? 0 : atan(b / a) * 2 / PM_PI;
+	if (x < y)
+		phi = 1 - phi;
+	double vv = phi * r, uu = r - vv;
+	if (d[2] < 0) {
+		double t = uu;
+		uu = 1 - vv;
+		vv = 1 - t;
+	}
+	uu = copysign(uu, d[0]);
+	vv = copysign(vv, d[1]);
+	*u = 0.5 * (uu + 1);
+	*v = 0.5 * (vv + 1);
+}
+
+/* pbrt-v4's equal-area sky image resampled (nearest texel) into the
+ * lat-long map pm reads, 2N x N for an N x N square, in pm's world (the
+ * light's rotation and the world's mirror applied), written beside the
+ * scene as a PFM. 1 (noted) if it cannot be read or is not square. */
+static int
+equal_area_sky(wctx *w, const pmi_light *l, char *name, size_t n)
+{
+	pm_rgbimage im;
+	pm_error e;
+	pmi_mat4 a = pmi_identity(), inv;
+
+	if (pm_rgbimage_read(l->map, &im, &e)) {
+		pmi_note_add(w->d, l->src, "environment image: %s: dropped", e.msg);
+		return 1;
+	}
+	if (im.w != im.h) {
+		pmi_note_add(w->d, l->src, "environment image '%s' is %d x %d, not pbrt-v4's equal-area square: dropped",
+		             l->map, im.w, im.h);
+		pm_rgbimage_free(&im);
+		return 1;
+	}
+	for (int i = 0; i < 3; i++)
+		for (int k = 0; k < 3; k++)
+			a.m[i][k] = l->rot[i][k];
+	if (pmi_invert(a, &inv)) {
+		pm_rgbimage_free(&im);
+		pmi_note_add(w->d, l->src, "environment image under a singular transform: dropped");
+		return 1;
+	}
+	int N = im.w, W = 2 * N, H = N;
+	char *buf = NULL;
+	size_t len = 0;
+	FILE *f = open_memstream(&buf, &len);
+	if (!f) {
+		pm_rgbimage_free(&im);
+		return pm_seterr(w->err, "out of memory");
+	}
+	fprintf(f, "PF\n%d %d\n-1\n", W, H);
+	/* PFM rows run bottom to top. */
+	for (int j = H - 1; j >= 0; j--)
+		for (int i = 0; i < W; i++) {
+			double phi = 2 * PM_PI * (i + 0.5) / W, th = PM_PI * (j + 0.5) / H;
+			double d[3] = { sin(phi) * sin(th), cos(th), -cos(phi) * sin(th) }, dl[3], u, v;
+			if (w->mirror)
+				d[0] = -d[0];
+			pmi_xform_vector(inv, d, dl);
+			double len2 = sqrt(dl[0] * dl[0] + dl[1] * dl[1] + dl[2] * dl[2]);
+			for (int c = 0; c < 3; c++)
+				dl[c] /= len2;
+			sphere_to_square(dl, &u, &v);
+			int x = (int)(u * N), y = (int)(v * N);
+			x = x < 0 ? 0 : x >= N ? N - 1 : x;
+			y = y < 0 ? 0 : y >= N ? N - 1 : y;
+			for (int c = 0; c < 3; c++)
+				put_f32(f, im.px[3 * ((size_t)y * N + x) + c]);
+		}
+	pm_rgbimage_free(&im);
+	if (fclose(f)) {
+		free(buf);
+		return pm_seterr(w->err, "out of memory");
+	}
+	if (keep_file(w, ".pfm", buf, len, name, n))
+		return -1;
+	pmi_note_add(w->d, l->src, "environment image '%s': pbrt-v4's equal-area square resampled to a %d x %d "
+	             "lat-long map (nearest texel)", l->map, W, H);
+	return 0;
+}
 
 static int
 write_lights(wctx *w, FILE *f)
 {
-	int n = 0;
+	int n = 0, nenv = 0;
 
 	for (size_t i = 0; i < w->d->nlights; i++) {
 		const pmi_light *l = &w->d->lights[i];
-		double p[3];
+		double p[3], q[3], c[3];
+		for (int k = 0; k < 3; k++)
+			c[k] = fmax(l->color[k], 0);
+		memcpy(p, l->pos, sizeof p);
+		mirror_point(w, p);
 		switch (l->kind) {
 		case PMI_LIGHT_POINT:
-			memcpy(p, l->pos, sizeof p);
-			mirror_point(w, p);
-			if (!(l->color[0] > 0 || l->color[1] > 0 || l->color[2] > 0)) {
+			if (!positive(c)) {
 				pmi_note_add(w->d, l->src, "point light of zero intensity: dropped");
 				break;
 			}
 			/* An isotropic point light of intensity I emits 4 pi I. */
 			fprintf(f, "pointlight %.9g %.9g %.9g power %.9g %.9g %.9g\n", p[0], p[1], p[2],
-			        4 * PM_PI * fmax(l->color[0], 0), 4 * PM_PI * fmax(l->color[1], 0), 4 * PM_PI * fmax(l->color[2], 0));
+			        4 * PM_PI * c[0], 4 * PM_PI * c[1], 4 * PM_PI * c[2]);
+			n++;
+			break;
+		case PMI_LIGHT_SPOT: {
+			double outer = l->cone, inner = l->cone - l->falloff;
+			double dl = sqrt(l->dir[0] * l->dir[0] + l->dir[1] * l->dir[1] + l->dir[2] * l->dir[2]);
+			if (!positive(c) || !(dl > 0) || !(outer > 0)) {
+				pmi_note_add(w->d, l->src, "spot light of zero intensity, direction or cone: dropped");
+				break;
+			}
+			if (outer > 90) {
+				pmi_note_add(w->d, l->src, "spot light cone of %g degrees: cut to 90 (pm's widest)", outer);
+				outer = 90;
+			}
+			inner = fmin(fmax(inner, 0), outer);
+			for (int k = 0; k < 3; k++)
+				q[k] = l->pos[k] + l->dir[k] / dl;
+			mirror_point(w, q);
+			fprintf(f, "spotlight %.9g %.9g %.9g to %.9g %.9g %.9g intensity %.9g %.9g %.9g cone %.9g %.9g falloff %s\n",
+			        p[0], p[1], p[2], q[0], q[1], q[2], c[0], c[1], c[2], outer, inner,
+			        l->linear ? "linear" : "smooth");
+			n++;
+			break;
+		}
+		case PMI_LIGHT_DISTANT:
+			memcpy(q, l->dir, sizeof q);
+			mirror_point(w, q);
+			if (!positive(c) || !(q[0] != 0 || q[1] != 0 || q[2] != 0)) {
+				pmi_note_add(w->d, l->src, "distant light of zero irradiance or direction: dropped");
+				break;
+			}
+			fprintf(f, "distantlight dir %.9g %.9g %.9g irradiance %.9g %.9g %.9g\n", q[0], q[1], q[2],
+			        c[0], c[1], c[2]);
+			n++;
+			break;
+		case PMI_LIGHT_INFINITE:
+			if (nenv) {
+				pmi_note_add(w->d, l->src, "a second environment light: dropped (pm has at most one)");
+				break;
+			}
+			if (!l->map[0]) {
+				if (!positive(c)) {
+					pmi_note_add(w->d, l->src, "environment light of zero radiance: dropped");
+					break;
+				}
+				fprintf(f, "envlight radiance %.9g %.9g %.9g\n", c[0], c[1], c[2]);
+			} else {
+				char name[512];
+				double axis[3], deg = 0, sc = l->map_scale > 0 ? l->map_scale : 1;
+				if (l->equal_area) {
+					int r = equal_area_sky(w, l, name, sizeof name);
+					if (r < 0)
+						return -1;
+					if (r > 0)
+						break;
+					fprintf(f, "envlight image %s scale %.9g\n", name, sc);
+					nenv++;
+					n++;
+					break;
+				}
+				if (w->mirror) {
+					pmi_note_add(w->d, l->src, "environment image in a mirrored world: pm cannot mirror it, dropped");
+					break;
+				}
+				if (l->has_rot && axis_angle(l->rot, axis, &deg)) {
+					pmi_note_add(w->d, l->src, "environment image with a mirroring or degenerate to_world: dropped");
+					break;
+				}
+				int r = copy_image(w, l->map, l->src, name, sizeof name);
+				if (r < 0)
+					return -1;
+				if (r > 0)
+					break;
+				fprintf(f, "envlight image %s scale %.9g", name, sc);
+				if (deg > 1e-9)
+					fprintf(f, " rotate %.9g %.9g %.9g %.9g", axis[0], axis[1], axis[2], deg);
+				fputc('\n', f);
+			}
+			nenv++;
 			n++;
 			break;
 		default:
-			pmi_note_add(w->d, l->src, "light '%s': pm has no such light yet, dropped", l->type);
+			pmi_note_add(w->d, l->src, "light '%s': pm has no such light, dropped", l->type);
 			break;
 		}
 	}
@@ -373,20 +694,23 @@ put_f32(FILE *f, float x)
 	put_u32(f, u);
 }
 
-typedef struct wvert { float p[3]; uint32_t id; } wvert;
 
 /* The mesh with equal positions welded (so a closed surface whose file
- * repeats vertices at uv seams is a closed solid to pm) and faces of no
- * area dropped, as a binary PLY in memory. */
+ * repeats vertices at uv seams is a closed solid to pm; with_uv welds
+ * only where (u, v) are equal too, as a texture needs, and shading
+ * normals only where they are equal) and faces of no area dropped, as a
+ * binary PLY in memory. */
 static int
-mesh_ply(wctx *w, const pmi_shape *s, char **buf, size_t *len, size_t *kept)
+mesh_ply(wctx *w, const pmi_shape *s, int with_uv, char **buf, size_t *len, size_t *kept)
 {
+	enum { K = 8 };   /* x y z u v nx ny nz */
+	int with_n = s->n != NULL;
 	size_t cap = 1;
 	while (cap < 2 * s->nv + 16)
 		cap <<= 1;
 	int64_t *slot = malloc(cap * sizeof *slot);
 	uint32_t *remap = malloc((s->nv ? s->nv : 1) * sizeof *remap);
-	float *pv = malloc((s->nv ? s->nv : 1) * 3 * sizeof *pv);
+	float *pv = malloc((s->nv ? s->nv : 1) * K * sizeof *pv);
 	size_t nu = 0;
 	FILE *f;
 
@@ -397,19 +721,27 @@ mesh_ply(wctx *w, const pmi_shape *s, char **buf, size_t *len, size_t *kept)
 	for (size_t i = 0; i < cap; i++)
 		slot[i] = -1;
 	for (size_t i = 0; i < s->nv; i++) {
-		float p[3] = { s->v[3 * i], s->v[3 * i + 1], s->v[3 * i + 2] };
-		if (w->mirror)
+		float p[K] = { s->v[3 * i], s->v[3 * i + 1], s->v[3 * i + 2], 0, 0, 0, 0, 0 };
+		if (with_uv) {
+			p[3] = s->uv[2 * i];
+			p[4] = s->uv[2 * i + 1];
+		}
+		if (with_n)
+			memcpy(p + 5, s->n + 3 * i, 3 * sizeof *p);
+		if (w->mirror) {
 			p[0] = -p[0];
-		for (int c = 0; c < 3; c++)
+			p[5] = -p[5];
+		}
+		for (int c = 0; c < K; c++)
 			if (p[c] == 0)
 				p[c] = 0;   /* -0 and +0 weld */
 		uint64_t h = pm_fnv1a(PM_FNV_OFFSET, p, sizeof p);
 		size_t k = h & (cap - 1);
-		while (slot[k] >= 0 && memcmp(pv + 3 * slot[k], p, sizeof p) != 0)
+		while (slot[k] >= 0 && memcmp(pv + K * slot[k], p, sizeof p) != 0)
 			k = (k + 1) & (cap - 1);
 		if (slot[k] < 0) {
 			slot[k] = (int64_t)nu;
-			memcpy(pv + 3 * nu, p, sizeof p);
+			memcpy(pv + K * nu, p, sizeof p);
 			nu++;
 		}
 		remap[i] = (uint32_t)slot[k];
@@ -421,8 +753,9 @@ mesh_ply(wctx *w, const pmi_shape *s, char **buf, size_t *len, size_t *kept)
 	}
 	/* Which faces have area, and their corners after welding. */
 	double ext = 0;
-	for (size_t i = 0; i < 3 * nu; i++)
-		ext = fmax(ext, fabs(pv[i]));
+	for (size_t i = 0; i < nu; i++)
+		for (int c = 0; c < 3; c++)
+			ext = fmax(ext, fabs(pv[K * i + c]));
 	size_t nf = 0, nfan = 0;
 	unsigned char *keep = calloc(s->nface ? s->nface : 1, 1);
 	if (!keep) {
@@ -446,10 +779,18 @@ mesh_ply(wctx *w, const pmi_shape *s, char **buf, size_t *len, size_t *kept)
 		}
 	}
 	fprintf(f, "ply\nformat binary_little_endian 1.0\ncomment pm-import\nelement vertex %zu\n"
-	        "property float x\nproperty float y\nproperty float z\nelement face %zu\n"
-	        "property list uchar uint vertex_indices\nend_header\n", nu, nf + nfan);
-	for (size_t i = 0; i < 3 * nu; i++)
-		put_f32(f, pv[i]);
+	        "property float x\nproperty float y\nproperty float z\n%s%selement face %zu\n"
+	        "property list uchar uint vertex_indices\nend_header\n", nu,
+	        with_n ? "property float nx\nproperty float ny\nproperty float nz\n" : "",
+	        with_uv ? "property float u\nproperty float v\n" : "", nf + nfan);
+	for (size_t i = 0; i < nu; i++) {
+		for (int c = 0; c < 3; c++)
+			put_f32(f, pv[K * i + c]);
+		for (int c = 5; c < (with_n ? 8 : 5); c++)
+			put_f32(f, pv[K * i + c]);
+		for (int c = 3; c < (with_uv ? 5 : 3); c++)
+			put_f32(f, pv[K * i + c]);
+	}
 	for (size_t fi = 0; fi < s->nface; fi++) {
 		if (!keep[fi])
 			continue;
@@ -496,6 +837,52 @@ write_file(wctx *w, const char *path, const char *buf, size_t len)
 	return 0;
 }
 
+/* Copies image file src beside the scene as STEM-HASH.EXT (the hash of
+ * its bytes), so the scene directory holds all it needs; its name in
+ * name. 1 (noted) if src cannot be read, -1 on a write error. */
+static int
+copy_image(wctx *w, const char *src, pmi_src at, char *name, size_t n)
+{
+	FILE *in = fopen(src, "rb");
+	char *buf = NULL;
+	size_t len = 0, cap = 0, k;
+
+	if (!in) {
+		pmi_note_add(w->d, at, "image '%s' cannot be read (%s): dropped", src, strerror(errno));
+		return 1;
+	}
+	for (;;) {
+		if (len == cap) {
+			char *nb = realloc(buf, cap = cap ? 2 * cap : 65536);
+			if (!nb) {
+				free(buf);
+				fclose(in);
+				return pm_seterr(w->err, "out of memory");
+			}
+			buf = nb;
+		}
+		if (!(k = fread(buf + len, 1, cap - len, in)))
+			break;
+		len += k;
+	}
+	int bad = ferror(in);
+	fclose(in);
+	if (bad || len == 0) {
+		free(buf);
+		pmi_note_add(w->d, at, "image '%s' cannot be read or is empty: dropped", src);
+		return 1;
+	}
+	const char *base = strrchr(src, '/'), *dot;
+	base = base ? base + 1 : src;
+	dot = strrchr(base, '.');
+	char ext[16] = "";
+	if (dot && strlen(dot) < sizeof ext && strcspn(dot, " \t#") == strlen(dot))
+		snprintf(ext, sizeof ext, "%s", dot);
+	if (keep_file(w, ext, buf, len, name, n))
+		return -1;
+	return 0;
+}
+
 static int
 write_shape(wctx *w, const pmi_shape *s, FILE *f, const pm_mat *pmm)
 {
@@ -510,13 +897,20 @@ write_shape(wctx *w, const pmi_shape *s, FILE *f, const pm_mat *pmm)
 		/* Emitters finer: their area (radiance x area is their power)
 		 * is 0.05 % short at subdiv 5, 0.2 % at pm's default 4. */
 		int emits = s->emit[0] > 0 || s->emit[1] > 0 || s->emit[2] > 0;
-		fprintf(f, "sphere %s %.9g %.9g %.9g %.9g subdiv %d\n", pmm->name, c[0], c[1], c[2], s->radius,
+		if (w->d->mats[s->mat].tex > 0 && w->tex_state[w->d->mats[s->mat].tex - 1] > 0)
+			pmi_note_add(w->d, s->src, "textured sphere: pm's spheres have no (u, v), the texture is read at (0, 0)");
+		/* smooth: shaded with the true sphere's normals, as pbrt-v4 and
+		 * Mitsuba 3 shade their analytic spheres. */
+		fprintf(f, "sphere %s %.9g %.9g %.9g %.9g subdiv %d smooth\n", pmm->name, c[0], c[1], c[2], s->radius,
 		        emits ? 5 : 4);
 		return 1;
 	}
-	char *buf = NULL, name[512], path[4700];
+	char *buf = NULL, name[512];
 	size_t len = 0, kept = 0;
-	if (mesh_ply(w, s, &buf, &len, &kept))
+	if (s->mat >= 0 && w->d->mats[s->mat].tex > 0 && w->tex_state[w->d->mats[s->mat].tex - 1] > 0 && !s->uv)
+		pmi_note_add(w->d, s->src, "textured shape without (u, v): pm reads its texture at (0, 0)");
+	int with_uv = s->uv && s->mat >= 0 && w->d->mats[s->mat].tex > 0 && w->tex_state[w->d->mats[s->mat].tex - 1] > 0;
+	if (mesh_ply(w, s, with_uv, &buf, &len, &kept))
 		return pm_seterr(w->err, "out of memory");
 	if (kept == 0) {
 		free(buf);
@@ -525,18 +919,8 @@ write_shape(wctx *w, const pmi_shape *s, FILE *f, const pm_mat *pmm)
 	}
 	if (kept < s->nface)
 		pmi_note_add(w->d, s->src, "faces of (nearly) zero area dropped");
-	snprintf(name, sizeof name, "%s-%016llx.ply", w->stem,
-	         (unsigned long long)pm_fnv1a(PM_FNV_OFFSET, buf, len));
-	snprintf(path, sizeof path, "%s%s", w->dir, name);
-	int seen = 0;
-	for (size_t i = 0; i < w->nmeshes; i++)
-		if (!strcmp(w->meshes[i], name))
-			seen = 1;
-	if (!seen && (write_file(w, path, buf, len) || remember(&w->meshes, &w->nmeshes, name))) {
-		free(buf);
+	if (keep_file(w, ".ply", buf, len, name, sizeof name))
 		return -1;
-	}
-	free(buf);
 	fprintf(f, "mesh %s %s\n", name, pmm->name);
 	return 1;
 }
@@ -554,8 +938,10 @@ old_meshes(wctx *w, const char *pms, char ***names, size_t *n)
 	if (!f)
 		return;
 	while (fgets(line, sizeof line, f))
-		if (sscanf(line, "mesh %511s", name) == 1 && strncmp(name, w->stem, sl) == 0 &&
-		    strlen(name) == sl + 21 && name[sl] == '-' && strcmp(name + sl + 17, ".ply") == 0 &&
+		if ((sscanf(line, "mesh %511s", name) == 1 || sscanf(line, "texture %*s image %511s", name) == 1 ||
+		     sscanf(line, "envlight image %511s", name) == 1) &&
+		    strncmp(name, w->stem, sl) == 0 && strlen(name) >= sl + 17 && name[sl] == '-' &&
+		    strspn(name + sl + 1, "0123456789abcdef") == 16 && (!name[sl + 17] || name[sl + 17] == '.') &&
 		    remember(names, n, name))
 			break;
 	fclose(f);
@@ -591,7 +977,7 @@ write_body(wctx *w, FILE *body, int width, int height, int *nlights)
 			continue;
 		const pm_mat *pmm = material_for(w, s, mats);
 		if (!pmm) {
-			r = pm_seterr(w->err, "out of memory");
+			r = w->err->msg[0] ? -1 : pm_seterr(w->err, "out of memory");
 			break;
 		}
 		int k = write_shape(w, s, objs, pmm);
@@ -600,8 +986,13 @@ write_body(wctx *w, FILE *body, int width, int height, int *nlights)
 		else if (k > 0 && emits)
 			(*nlights)++;
 	}
-	if (!r)
-		*nlights += write_lights(w, objs);
+	if (!r) {
+		int nl = write_lights(w, objs);
+		if (nl < 0)
+			r = -1;
+		else
+			*nlights += nl;
+	}
 	int e1 = fclose(mats), e2 = fclose(objs);
 	if (!r && (e1 || e2))
 		r = pm_seterr(w->err, "out of memory");
@@ -627,6 +1018,9 @@ pmi_write(pmi_desc *d, const char *pms_path, const pmi_write_opts *o, pm_error *
 	memset(&w, 0, sizeof w);
 	w.d = d;
 	w.err = err;
+	err->msg[0] = 0;
+	if (!(w.tex_state = calloc(d->ntexs + 1, sizeof *w.tex_state)))
+		return pm_seterr(err, "out of memory");
 	const char *sl = strrchr(pms_path, '/');
 	const char *base = sl ? sl + 1 : pms_path;
 	if (sl)
@@ -746,6 +1140,7 @@ out:
 		free(w.meshes[i]);
 	free(w.meshes);
 	free(w.mats);
+	free(w.tex_state);
 	return r;
 }
 

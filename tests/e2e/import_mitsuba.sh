@@ -118,12 +118,12 @@ num_near "the same with flip_normals leaves the floor dark" "$(win up.exr 0,0,8,
 
 # A point light of intensity 2 at height 2: the floor reads 0.5 x 2/4 / pi.
 floor '<emitter type="point"><point name="position" x="0" y="2" z="0"/><rgb name="intensity" value="2"/></emitter>
-	<emitter type="constant"><rgb name="radiance" value="1"/></emitter>' >point.xml
+	<emitter type="projector"><rgb name="irradiance" value="1"/></emitter>' >point.xml
 pm-import point.xml -o point/scene.pms 2>notes.txt
 pm-render -q -e path -p 16 point/scene.pms -o point.exr
 num_near "point light, intensity 2 at height 2: floor 0.0796" "$(win point.exr 0,0,8,8)" 0.0795775 0.002
-check "the constant emitter dropped with a note naming its line" \
-	grep -q "^pm-import: point.xml:13: light 'constant': pm has no such light yet, dropped" notes.txt
+check "the projector emitter dropped with a note naming its line" \
+	grep -q "^pm-import: point.xml:13: light 'projector': pm has no such light, dropped" notes.txt
 
 # The bsdf rules (README).
 { echo '<scene version="3.0.0">'
