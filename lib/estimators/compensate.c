@@ -45,12 +45,14 @@
  * no layer over it, which matters only when met from behind. */
 #define MATTER (1 << 30)
 /* A smooth patch's polygons in the cube (scene/patch.h) whose sides that
- * count all lie within this of their mean (cos 30 degrees, as SMOOTH_COS)
- * are one sheet: one surface at the cube's scale, many facets (a curved
- * or scanned mesh). A sheet hides none of itself from x', and a backward
- * ray leaving it does not meet it again, as holds exactly for a flat
- * polygon and for rays steeper than the sheet's slopes. */
-#define SHEET_COS 0.866
+ * count all lie within this of their mean (cos 45.6 degrees) are one
+ * sheet: one surface at the cube's scale, many facets (a curved or scanned
+ * mesh). A sheet hides none of itself from x', and a backward ray leaving
+ * it does not meet it again, as holds exactly for a flat polygon and for
+ * rays steeper than the sheet's slopes. (30 degrees, SMOOTH_COS, cost a
+ * dense mesh 1.6 times as much for no measurable change in the torture
+ * scenes with curved meshes: BENCHMARKS.md, "Sheets".) */
+#define SHEET_COS 0.7
 /* More groups than this in one cube (a rough mesh, facets facing every
  * way): the fates are not followed (every ray counts as open), which keeps
  * the cost of such cubes bounded; what x' sees still is. A smooth mesh of

@@ -18,7 +18,7 @@
  *    the backs of solids are looked for. A layer on g's plane facing it (a
  *    block resting on a rug) covers y for every direction.
  *  - The facets of one smooth patch of a mesh in the cube whose sides that
- *    count lie within 30 degrees of their mean are one sheet: they hide none
+ *    count lie within 45 degrees of their mean are one sheet: they hide none
  *    of each other from x', and a backward ray leaving the sheet does not
  *    meet it again (exact for rays steeper than its slopes).
  * Other choices:
