@@ -14,10 +14,14 @@
 #     highlights are narrower in the tails than GGX's (-70 % to +30 % on the
 #     plates' blocks), and the file asks for maxdepth 3 where pm follows
 #     paths further: rms <= 30 %, max <= 80 %;
-#   water-caustic: known failure, reported only: its floor is lit only
-#     through the water by a light of 2e-5 m^2 (no path tracer finds those
-#     caustics in reasonable time) and pm's glass does not rescale radiance
-#     by eta^2 for surfaces inside it.
+#   water-caustic: its floor is lit only through the water by a light of
+#     2e-5 m^2: pm's path tracer does not converge on it (mean 1.14, block
+#     rms 770 % at 256 samples), a known failure reported only. pm's photon
+#     pipeline (2M photons, compensated, the paper's method) is checked
+#     too: mean 0.983; blocks above the water within 10 %, under it +5 to
+#     +20 % (the file's maxdepth 9 is not honoured; unverified): rms <= 15 %;
+#     the block holding the light's mirror image in the water reads -92 %
+#     (pm does not show that image), so it stays a known failure.
 # Usage: tests/public/scenes.sh BUILD_DIR
 top=$(cd "$(dirname "$0")/../.." && pwd)
 B=$(cd "$1" && pwd)
@@ -28,7 +32,8 @@ blocks="$B/tests/tools/exrblocks"
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 pass=0 fail=0
-# one NAME INPUT W H SPP RMS MAX [known]
+# one NAME INPUT W H SPP RMS MAX [known]; PHOTONS=N one ...: pm-shoot -n N |
+# pm-build | pm-render -e compensated instead of the path tracer
 one() {
 	name=$1 in=$2 w=$3 h=$4 spp=$5 trms=$6 tmax=$7 known=${8:-}
 	ref=$(dirname "$in")/TungstenRender.exr
@@ -37,8 +42,12 @@ one() {
 		echo "not ok - $name: import failed: $(cat "$work/err")"; fail=$((fail + 1)); return
 	fi
 	start=$(date +%s)
-	pm-render -q -e path -p "$spp" "$work/$name/scene.pms" -o "$work/$name.exr" || {
-		echo "not ok - $name: render failed"; fail=$((fail + 1)); return; }
+	if [ -n "${PHOTONS:-}" ]; then
+		pm-shoot -q -n "$PHOTONS" "$work/$name/scene.pms" | pm-build -q |
+			pm-render -q -e compensated -p "$spp" "$work/$name/scene.pms" - -o "$work/$name.exr"
+	else
+		pm-render -q -e path -p "$spp" "$work/$name/scene.pms" -o "$work/$name.exr"
+	fi || { echo "not ok - $name: render failed"; fail=$((fail + 1)); return; }
 	"$blocks" "$work/$name.exr" "$ref" >"$work/$name.txt"
 	kv() { sed -n "s/^$1: //p" "$work/$name.txt"; }
 	ratio=$(kv mean_ratio) rms=$(kv block_rel_rms) max=$(kv block_rel_max)
@@ -56,6 +65,8 @@ one cornell-box-pbrt "$src/cornell-box/pbrt/scene-v4.pbrt" 128 128 512 0.02 0.06
 one cornell-box-mitsuba "$src/cornell-box/mitsuba/scene_v3.xml" 128 128 512 0.02 0.06
 one veach-mis "$src/veach-mis/pbrt/scene-v4.pbrt" 160 90 256 0.30 0.80
 one water-caustic "$src/water-caustic/pbrt/scene-v4.pbrt" 128 128 256 0.1 0.3 \
-	"caustics through water from a tiny light; pm's glass lacks the eta^2 rescaling inside it"
+	"caustics through water from a light of 2e-5 m^2: the path tracer does not converge"
+PHOTONS=2000000 one water-caustic-photons "$src/water-caustic/pbrt/scene-v4.pbrt" 128 128 16 0.15 0.3 \
+	"the light's mirror image in the water (one block, -92 %) is missing"
 echo "check-scenes: $pass passed, $fail failed"
 [ "$fail" -eq 0 ]
