@@ -25,8 +25,9 @@
 #     reads 1.52 times the shipped Tungsten reference here (plates 2-3.5
 #     times), so the reference's agreement with pm (0.984) is partly luck;
 #   water-caustic: its floor is lit only through the water by a light of
-#     2e-5 m^2: pm's path tracer does not converge on it (mean 1.14, block
-#     rms 770 % at 256 samples), a known failure reported only. pm's photon
+#     2e-5 m^2: pm's path tracer does not converge on it (mean 0.73 or 1.14,
+#     block rms 480 % or 770 %, as its roulette changes the noise, at 256
+#     samples), a known failure reported only. pm's photon
 #     pipeline (2M photons, compensated, the paper's method) is checked
 #     too: mean 0.983, block rms 11 % (<= 15 % asked). Its worst block
 #     (-92 %) holds the light's mirror image in the water, a quarter of a
