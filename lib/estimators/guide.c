@@ -113,6 +113,7 @@ pm_guide_mix(const pm_guide *gd, const pm_material *m, pm_vec3 ng, pm_vec3 n,
 	s->weight = pm_scale(pm_bsdf_eval(m, n, s->wi, wo), ci / pdf);
 	s->pdf = pdf;
 	s->delta = 0;
+	s->adjoint = 1;
 	return pm_vfinite(s->weight) ? 0 : -1;
 }
 

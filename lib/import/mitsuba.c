@@ -753,9 +753,21 @@ shape(mreader *M, const xnode *n)
 		if (type[0] == 'o') {
 			if (pmi_read_obj_mesh(path, &s, &e))
 				return pmi_err(M->d, n->src, M->err, "%s", e.msg);
+			/* Mitsuba 3's obj loader turns the file's v into 1 - v
+			 * unless flip_tex_coords is false (its uv are then those
+			 * its bitmap reads with v = 0 on the top row). */
+			const char *ft = pstring(M, n, "flip_tex_coords");
+			if (s.uv && !(ft && !strcmp(ft, "false")))
+				for (size_t i = 0; i < s.nv; i++)
+					s.uv[2 * i + 1] = 1 - s.uv[2 * i + 1];
+			if (pbool(M, n, "face_normals")) {
+				free(s.n);
+				s.n = NULL;
+			}
 		} else if (pmi_ply_read(path, &s, &N, &e))
 			return pmi_err(M->d, n->src, M->err, "%s", e.msg);
-		s.n = N;   /* shading normals, carried by to_world below */
+		else
+			s.n = N;   /* shading normals, carried by to_world below */
 	} else if (!strcmp(type, "rectangle")) {
 		static const float v[] = { -1, -1, 0, 1, -1, 0, 1, 1, 0, -1, 1, 0 };
 		static const uint32_t q[] = { 0, 1, 2, 3 };

@@ -440,7 +440,15 @@ pmi_read_obj_mesh(const char *path, pmi_shape *s, pm_error *err)
 			nf += tmp.shapes[i].nface;
 			nc += tmp.shapes[i].start[tmp.shapes[i].nface];
 		}
-		if (pmi_mesh_alloc(s, nv, nf, nc, 0)) {
+		/* uv and normals where every group has them (a group
+		 * without would leave its vertices' undefined). */
+		int has_uv = tmp.nshapes > 0, has_n = tmp.nshapes > 0;
+		for (size_t i = 0; i < tmp.nshapes; i++) {
+			has_uv &= tmp.shapes[i].uv != NULL;
+			has_n &= tmp.shapes[i].n != NULL;
+		}
+		if (pmi_mesh_alloc(s, nv, nf, nc, has_uv) ||
+		    (has_n && !(s->n = malloc((nv ? nv : 1) * 3 * sizeof *s->n)))) {
 			pmi_shape_free(s);
 			r = pm_seterr(err, "out of memory");
 		} else {
@@ -448,6 +456,10 @@ pmi_read_obj_mesh(const char *path, pmi_shape *s, pm_error *err)
 			for (size_t i = 0; i < tmp.nshapes; i++) {
 				const pmi_shape *t = &tmp.shapes[i];
 				memcpy(s->v + 3 * ov, t->v, 3 * t->nv * sizeof *t->v);
+				if (has_uv)
+					memcpy(s->uv + 2 * ov, t->uv, 2 * t->nv * sizeof *t->uv);
+				if (has_n)
+					memcpy(s->n + 3 * ov, t->n, 3 * t->nv * sizeof *t->n);
 				for (size_t f = 0; f < t->nface; f++)
 					s->start[of + f + 1] = (uint32_t)(oc + t->start[f + 1]);
 				for (size_t c = 0; c < t->start[t->nface]; c++)

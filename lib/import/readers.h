@@ -20,7 +20,8 @@ int pmi_read_mitsuba(const char *path, pmi_desc *d, pm_error *err);
 int pmi_read_obj(const char *path, pmi_desc *d, pm_error *err);
 
 /* An OBJ's faces as one mesh, its materials ignored (Mitsuba's obj
- * shapes). On failure err names the file and line and s is empty. */
+ * shapes), with the file's uv and vertex normals where every group has
+ * them. On failure err names the file and line and s is empty. */
 int pmi_read_obj_mesh(const char *path, pmi_shape *s, pm_error *err);
 
 /* Which reader a file wants, by its extension (.pbrt, .xml, .obj, any

@@ -1094,7 +1094,18 @@ pmi_write(pmi_desc *d, const char *pms_path, const pmi_write_opts *o, pm_error *
 		int lr = pm_scene_load(&sc, check, &e);
 		unlink(check);
 		if (lr) {
-			pm_seterr(err, "the imported scene does not load (a pm-import bug): %s", e.msg);
+			/* Out of pm's range (formats/scene.md, "Range") is the
+			 * input's doing: name it, and the statement without the
+			 * temporary file's name. Anything else is the writer's. */
+			const char *m = e.msg;
+			size_t cl = strlen(check);
+			if (!strncmp(m, check, cl) && m[cl] == ':')
+				m += cl + 1 + strspn(m + cl + 1, "0123456789:") ;
+			m += strspn(m, " ");
+			if (strstr(e.msg, "\"Range\"") && d->nfiles > 0)
+				pm_seterr(err, "%s: the scene is beyond what pm renders: %s", d->files[0], m);
+			else
+				pm_seterr(err, "the imported scene does not load (a pm-import bug): %s", e.msg);
 			goto out;
 		}
 		pm_scene_free(&sc);

@@ -165,6 +165,7 @@ pm_bsdf_sample_n(const pm_material *m, pm_vec3 ng, pm_vec3 n, pm_vec3 wo, float 
 
 	s->delta = 0;
 	s->pdf = 0;
+	s->adjoint = 1;
 	switch (m->kind) {
 	case PM_MAT_DIFFUSE:
 		s->wi = pm_sample_cosine(n, u1, u2);
@@ -209,11 +210,14 @@ pm_bsdf_sample_n(const pm_material *m, pm_vec3 ng, pm_vec3 n, pm_vec3 wo, float 
 			s->wi = reflect(wo, n);
 			s->weight = pm_v3(1, 1, 1);
 		} else {
-			/* Refraction: wi = -eta wo + (eta cos_i - cos_t) n. Radiance
-			 * is not rescaled by eta^2: paths enter and leave the glass,
-			 * so the factors cancel for light and camera outside it. */
+			/* Refraction: wi = -eta wo + (eta cos_i - cos_t) n; radiance
+			 * crossing into wo's medium is scaled by eta^2, kept within
+			 * float (an ior of 1e-30 or 3e38 is legal) so that weight x
+			 * adjoint stays ks. */
+			float e2 = fminf(fmaxf(eta * eta, 1e-30f), 1e30f);
 			s->wi = pm_norm(pm_add(pm_scale(wo, -eta), pm_scale(n, eta * ci - ct)));
-			s->weight = m->ks;
+			s->weight = pm_scale(m->ks, e2);
+			s->adjoint = 1.0f / e2;
 		}
 		return shaded && !geometric_side(ng, wo, s->wi, u1 >= F) ? -1 : 0;
 	}

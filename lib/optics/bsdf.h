@@ -20,11 +20,19 @@ typedef struct pm_scatter {
 	pm_vec3 weight;     /* f cos / pdf (the throughput factor) */
 	float pdf;          /* solid-angle density of wi (0 for a delta) */
 	int delta;          /* 1 if sampled from a delta (mirror, glass) */
+	float adjoint;      /* what turns weight from radiance's into power's:
+	                     * (eta on wi's side / eta on wo's side)^2 after a
+	                     * refraction, 1 otherwise */
 } pm_scatter;
 
 /* Samples wi given wo. ng is the geometric front normal of the surface (not
  * flipped): glass uses it to tell entering from leaving. Returns 0 and sets
- * *s, or -1 if the sample is absorbed (direction below the surface). */
+ * *s, or -1 if the sample is absorbed (direction below the surface).
+ * The weight carries radiance from wi to wo (camera paths): a refraction
+ * scales it by (eta_wo / eta_wi)^2, radiance being compressed into the
+ * denser medium. A photon (power, arriving along wo and leaving along wi)
+ * takes weight x adjoint instead (Veach 1997, ch. 5: refraction's BSDF is
+ * not symmetric). */
 int pm_bsdf_sample(const pm_material *m, pm_vec3 ng, pm_vec3 wo, pm_rng *r,
                    pm_scatter *s);
 

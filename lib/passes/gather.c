@@ -65,6 +65,7 @@ gather_ray(const pm_gather *g, void *sc, pm_rng *r, pm_vec3 x, pm_vec3 ng, const
 {
 	pm_vec3 beta = s->weight, d = s->wi, o = pm_accel_offset(g->a, x, ng, d);
 	pm_vec3 acc = pm_v3(0, 0, 0);
+	float eta_scale = s->adjoint;   /* the refractions' adjoint factors */
 
 	for (int depth = 0; depth < GATHER_DEPTH; depth++) {
 		const pm_material *m;
@@ -89,8 +90,11 @@ gather_ray(const pm_gather *g, void *sc, pm_rng *r, pm_vec3 x, pm_vec3 ng, const
 		if (pm_bsdf_sample(m, h.ng, wo, r, &bs) != 0)
 			return acc;
 		beta = pm_mul(beta, bs.weight);
+		/* Roulette on the throughput without refraction's eta^2
+		 * (Veach 1997, 5.2): inside glass it is not less light. */
+		eta_scale *= bs.adjoint;
 		if (depth >= 3) {
-			float q = fminf(0.95f, pm_maxc(beta));
+			float q = fminf(0.95f, pm_maxc(beta) * eta_scale);
 			if (!(q > 0) || pm_rng_f(r) >= q)
 				return acc;
 			beta = pm_scale(beta, 1.0f / q);

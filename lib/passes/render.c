@@ -134,6 +134,7 @@ walk(const ctx *c, void *sc, pm_vec3 o, pm_vec3 d, int depth, pm_vec3 beta, pm_v
      int delta, float bpdf, int nlprev, pm_vec3 *bucket, sample *out, pxcache *pc, pm_rng *r)
 {
 	int maxd = c->o->max_depth > 0 ? c->o->max_depth : 64;
+	float eta_scale = 1;    /* the product of the refractions' adjoint factors */
 	pm_hit h;
 
 	for (; depth < maxd; depth++) {
@@ -206,8 +207,11 @@ walk(const ctx *c, void *sc, pm_vec3 o, pm_vec3 d, int depth, pm_vec3 beta, pm_v
 		bpdf = bs.pdf;
 		nlprev = nl;
 		prev = h.p;
+		/* Roulette on the throughput without refraction's eta^2
+		 * (Veach 1997, 5.2): inside glass it is not less light. */
+		eta_scale *= bs.adjoint;
 		if (depth >= 3) {
-			float q = fminf(0.95f, pm_maxc(beta));
+			float q = fminf(0.95f, pm_maxc(beta) * eta_scale);
 			if (!(q > 0) || pm_rng_f(r) >= q)
 				return;
 			beta = pm_scale(beta, 1.0f / q);

@@ -139,6 +139,9 @@ trace_path(const pm_scene *s, const pm_accel *a, const pm_lights *L, const pm_sh
 				return;
 			sc.weight = pm_scale(sc.weight, c);
 		}
+		/* Photons carry power: no eta^2 across a refraction. */
+		if (sc.adjoint != 1.0f)
+			sc.weight = pm_scale(sc.weight, sc.adjoint);
 		q = fminf(1.0f, pm_maxc(sc.weight));
 		if (!(q > 0) || u[3] >= q)
 			return;

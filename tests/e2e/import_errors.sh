@@ -107,3 +107,15 @@ for f in whole.pbrt whole.xml whole.obj tri.ply; do
 	cp keep.$f $f
 	check "$f cut short at 16 points: exit 0, or 1 with one line and nothing written:${bad:- yes}" test -z "$bad"
 done
+
+# A scene beyond pm's range (formats/scene.md, "Range") is the input's
+# fault, not pm-import's: the message names the source file, and nothing
+# is written.
+{ echo 'LookAt 0 0 5  0 0 0  0 1 0'
+  echo 'Camera "perspective" "float fov" [ 40 ]'
+  echo 'WorldBegin'
+  echo 'AreaLightSource "diffuse" "rgb L" [ 1e35 1e35 1e35 ]'
+  echo 'Shape "trianglemesh" "point3 P" [ -1 -1 0  1 -1 0  1 1 0 ] "integer indices" [ 0 1 2 ]'; } >hot.pbrt
+expect_fail "out of range: the source file named, not called a pm-import bug" 1 \
+	"^pm-import: hot.pbrt: the scene is beyond what pm renders: material .*emit 1e+35" pm-import hot.pbrt -o hot/scene.pms
+check "out of range: nothing written" test ! -e hot

@@ -3,7 +3,8 @@
 # from straight above (so a diffuse floor reads its albedo): a
 # checkerboard's two squares, the same through a "scale" texture, an 8-bit
 # image texture decoded from sRGB (the image copied beside the scene), and
-# vertex normals N tilted 60 degrees halving the floor's reading.
+# vertex normals N tilted 60 degrees halving the floor's reading; Mitsuba's
+# checkerboard, and its obj shapes' uv and normals under a bitmap.
 . "$PM_TOP/tests/lib.sh"
 stat="$PM_BIN/../tests/tools/exrstat"
 win() { "$stat" --window "$2" "$1" | sed -n "s/^$3: //p"; }
@@ -82,16 +83,23 @@ check "the mesh file carries nx ny nz" grep -aq '^property float nx$' "nrm/$(sed
 # Mitsuba 3: a checkerboard (color0 0.8, color1 0.2, squares half a unit
 # of uv) on a rectangle (uv (x + 1) / 2, (y + 1) / 2), by <ref> to a
 # top-level texture; the same directional light (irradiance pi).
-mck() {
+# msensor: Mitsuba's camera looking down at the floor, 33 x 33.
+msensor() {
 	cat <<XML
-<scene version="3.0.0">
 	<sensor type="perspective">
 		<float name="fov" value="40"/>
 		<transform name="to_world"><lookat origin="0, 2, 0" target="0, 0, 0" up="0, 0, 1"/></transform>
 		<film type="hdrfilm"><integer name="width" value="33"/><integer name="height" value="33"/></film>
 	</sensor>
+XML
+}
+mlight='<emitter type="directional"><vector name="direction" x="0" y="-1" z="0"/><rgb name="irradiance" value="3.14159265358979"/></emitter>'
+mck() {
+	echo '<scene version="3.0.0">'
+	msensor
+	cat <<XML
 	<texture type="checkerboard" id="ck"><rgb name="color0" value="0.8"/><rgb name="color1" value="0.2"/></texture>
-	<emitter type="directional"><vector name="direction" x="0" y="-1" z="0"/><rgb name="irradiance" value="3.14159265358979"/></emitter>
+	$mlight
 	<shape type="rectangle">
 		<transform name="to_world"><rotate x="1" angle="-90"/></transform>
 		<bsdf type="diffuse">$1</bsdf>
@@ -155,3 +163,45 @@ check "map_Kd is pm's texture (albedo tex)" grep -q '^material .* diffuse albedo
 pm-render -q -e path -p 64 obj/scene.pms -o obj.exr
 l=$(win obj.exr 4,8,12,14 mean); r=$(win obj.exr 20,8,28,14 mean)
 num_near "map_Kd: textured / white = the top texel's 0.2158605" "$(awk -v l="$l" -v r="$r" 'BEGIN { print l / r }')" 0.2158605 0.01
+
+# Mitsuba 3 obj shapes keep their uv and vertex normals. Mitsuba's obj
+# loader turns v into 1 - v (flip_tex_coords, default true) and its bitmap
+# has v = 0 on the top row (both read in Mitsuba 3's src/shapes/obj.cpp and
+# src/textures/bitmap.cpp), so vt (0.5, 0.75) reads the top texel of the
+# 1 x 2 image (sRGB 128: 0.2158605) and, with flip_tex_coords false, the
+# bottom one (0). The floor under the directional light of irradiance pi
+# reads the albedo; vn tilted to cos 0.8 scale it by 0.8, unless
+# face_normals.
+cat >mf.obj <<'OBJ'
+v -1 0 -1
+v 1 0 -1
+v 1 0 1
+v -1 0 1
+vt 0.5 0.75
+vn 0.6 0.8 0
+f 4/1/1 3/1/1 2/1/1 1/1/1
+OBJ
+sed '/^vn/d; s|/1/1|/1|g' mf.obj >mft.obj
+mobj() {
+	echo '<scene version="3.0.0">'
+	msensor
+	cat <<XML
+	$mlight
+	<shape type="obj">
+		<string name="filename" value="$1"/>$2
+		<bsdf type="diffuse"><texture type="bitmap" name="reflectance"><string name="filename" value="tb.pgm"/></texture></bsdf>
+	</shape>
+</scene>
+XML
+}
+mobj mft.obj '' >mo.xml
+mobj mft.obj '<boolean name="flip_tex_coords" value="false"/>' >mo_noflip.xml
+mobj mf.obj '' >mo_n.xml
+mobj mf.obj '<boolean name="face_normals" value="true"/>' >mo_fn.xml
+for p in "mo 0.2158605 uv_(v_flipped),_the_top_texel" "mo_noflip 0 flip_tex_coords_false:_the_bottom_texel" \
+	"mo_n 0.1726884 vertex_normals_at_cos_0.8:_0.8_of_it" "mo_fn 0.2158605 face_normals:_vn_ignored"; do
+	set -- $p
+	pm-import -q $1.xml -o $1/scene.pms 2>$1.err
+	pm-render -q -e path -p 4 $1/scene.pms -o $1.exr
+	num_near "Mitsuba obj: $(echo $3 | tr _ ' ') ($2)" "$(win $1.exr 0,0,33,33 mean)" "$2" 1e-5
+done

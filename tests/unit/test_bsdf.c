@@ -130,6 +130,36 @@ TEST(glass_fresnel_snell)
 	}
 }
 
+/* Refraction's weight carries radiance: (eta on wo's side / eta on wi's
+ * side)^2, so a camera in glass looking out sees radiance 2.25 times
+ * brighter (for 1.5) and one outside looking in 1/2.25 of it; the adjoint
+ * factor turns it back into power's (photons), which has no eta^2. The
+ * reflection has neither. */
+TEST(glass_radiance_scaling)
+{
+	pm_material m = mat(PM_MAT_GLASS, 0, 0.8f, 0);
+	pm_vec3 ng = pm_v3(0, 0, 1);
+	struct { pm_vec3 wo; float w; } c[] = {
+		{ pm_v3(0, 0, -1), 0.8f * 2.25f },                /* wo inside */
+		{ pm_v3(0, 0, 1), 0.8f / 2.25f },                 /* wo outside */
+		{ pm_norm(pm_v3(0.3f, 0, 1)), 0.8f / 2.25f },     /* oblique, outside */
+		{ pm_norm(pm_v3(0.3f, 0, -1)), 0.8f * 2.25f },    /* oblique, inside */
+	};
+	for (size_t k = 0; k < sizeof c / sizeof c[0]; k++) {
+		pm_scatter s;
+		/* u1 = 0.99 > F: refraction */
+		CHECK(pm_bsdf_sample_u(&m, ng, c[k].wo, 0.99f, 0.5f, 0.5f, &s) == 0);
+		CHECK(s.wi.z * c[k].wo.z < 0);
+		CHECKF(fabsf(s.weight.x - c[k].w) < 1e-5f && s.weight.x == s.weight.z,
+		       "case %zu: weight %g, want %g", k, s.weight.x, c[k].w);
+		CHECKF(fabsf(s.weight.x * s.adjoint - 0.8f) < 1e-6f, "case %zu: power weight %g",
+		       k, s.weight.x * s.adjoint);
+		/* u1 = 0.001 < F: reflection, no factor either way */
+		CHECK(pm_bsdf_sample_u(&m, ng, c[k].wo, 0.001f, 0.5f, 0.5f, &s) == 0);
+		CHECK(s.wi.z * c[k].wo.z > 0 && s.weight.x == 1 && s.adjoint == 1);
+	}
+}
+
 int
 main(void)
 {
@@ -139,5 +169,6 @@ main(void)
 	RUN(diffuse_albedo_exact);
 	RUN(mirror_reflects);
 	RUN(glass_fresnel_snell);
+	RUN(glass_radiance_scaling);
 	return check_done();
 }
