@@ -85,7 +85,7 @@ typedef struct pxcache {
 } pxcache;
 
 static pm_vec3
-first_estimate(const ctx *c, void *sc, const pm_hit *h, pm_vec3 n, pm_vec3 wo,
+first_estimate(const ctx *c, void *sc, const pm_hit *h, pm_vec3 n, pm_vec3 ns, pm_vec3 wo,
                const pm_material *m, pxcache *pc, pm_estimate_info *info)
 {
 	pm_vec3 L;
@@ -95,7 +95,7 @@ first_estimate(const ctx *c, void *sc, const pm_hit *h, pm_vec3 n, pm_vec3 wo,
 		*info = pc->info;
 		return pc->L;
 	}
-	L = c->est->estimate(&c->in, sc, h->p, n, wo, m, info);
+	L = c->est->estimate(&c->in, sc, h->p, n, ns, wo, m, info);
 	if (pc) {
 		if (!pc->rec) {
 			/* The footprint's area: the pixel's angle at distance t,
@@ -152,9 +152,10 @@ walk(const ctx *c, void *sc, pm_vec3 o, pm_vec3 d, int depth, pm_vec3 beta, pm_v
 			return;
 		}
 		m = pm_hit_material(c->s, &h, &mt);
-		/* nf: the facet's normal on wo's side, for the estimate (whose
-		 * clipping and target areas are the facets'); n: the shading
-		 * normal there, for direct light and the BSDF (README). */
+		/* nf: the facet's normal on wo's side, for the estimate's
+		 * geometry (clipping, target areas, which photons count); n: the
+		 * shading normal there, for direct light, the BSDF and the
+		 * estimate's cosine (README). */
 		nf = pm_dot(h.ng, wo) >= 0 ? h.ng : pm_neg(h.ng);
 		n = pm_shading_side(h.ng, pm_hit_shading(c->s, &h), wo);
 		if (depth == 0)
@@ -187,8 +188,8 @@ walk(const ctx *c, void *sc, pm_vec3 o, pm_vec3 d, int depth, pm_vec3 beta, pm_v
 			/* The BSDF-sampled half of the direct light. */
 			*here = pm_add(*here, pm_mul(beta, pm_direct_bsdf_light(&c->dl, h.p, h.ng, &bs, nl)));
 			/* Gathering draws its own rays: one gather per camera sample. */
-			L = c->o->gather ? pm_gather_radiance(&c->gather, sc, r, h.p, h.ng, nf, wo, m, &info)
-			                 : first_estimate(c, sc, &h, nf, wo, m,
+			L = c->o->gather ? pm_gather_radiance(&c->gather, sc, r, h.p, h.ng, nf, n, wo, m, &info)
+			                 : first_estimate(c, sc, &h, nf, n, wo, m,
 			                                  depth == 0 && c->o->estimate_once ? pc : NULL, &info);
 			*bucket = pm_add(*bucket, pm_mul(beta, L));
 			if (depth == 0) {
