@@ -186,6 +186,16 @@ check-scenes: deps
 	@sh tests/public/scenes.sh $(B)
 .PHONY: check-scenes
 
+# make check-peers (not part of make check): scenes written by
+# tests/peers/pbrt_*.sh, rendered by pbrt-v4 (PM_PBRT, default
+# ../shared/peers/pbrt; skipped when absent) and by pm after pm-import, the
+# images compared by their means (tests/peers/run.sh). PEERS=PATTERN runs
+# the scripts whose name holds it.
+check-peers: deps
+	@$(MAKE) --no-print-directory $(TOOLS) $(B)/tests/tools/exrblocks $(B)/tests/tools/exrstat
+	@sh tests/peers/run.sh $(B) $(PEERS)
+.PHONY: check-peers
+
 # make check-blender (as root; not part of make check): Debian's blender,
 # scenes built from bpy primitives, exported by tools/pm-blender.py and
 # rendered by pm (tests/blender/).
