@@ -151,7 +151,15 @@ walk(const ctx *c, void *sc, pm_vec3 o, pm_vec3 d, int depth, pm_vec3 beta, pm_v
 			*sky = pm_add(*sky, pm_mul(beta, pm_direct_escaped(&c->dl, d, bpdf, delta, nlprev)));
 			return;
 		}
-		m = pm_hit_material(c->s, &h, &mt);
+		if (depth == 0) {
+			/* The camera ray's pixel footprint filters textures
+			 * (the light pass and later bounces point-sample). */
+			pm_vec3 a1, a2;
+			pm_pixel_footprint(&h, d, c->pixel_angle, &a1, &a2);
+			m = pm_hit_material_fp(c->s, &h, a1, a2, &mt);
+		} else {
+			m = pm_hit_material(c->s, &h, &mt);
+		}
 		/* nf: the facet's normal on wo's side, for the estimate's
 		 * geometry (clipping, target areas, which photons count); n: the
 		 * shading normal there, for direct light, the BSDF and the
