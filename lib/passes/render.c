@@ -44,6 +44,7 @@ typedef struct ctx {
 	pm_est_in in;
 	pm_direct dl;       /* the scene, accel and lights again, for direct.h */
 	float pixel_angle;  /* a pixel's width in radians at the image centre */
+	float sample_angle; /* the spacing of its camera samples: textures' filter */
 	int light_samples;  /* o->light_samples, at least 1 */
 	pm_gather gather;   /* used if o->gather */
 	const uint32_t *patch;  /* each polygon's smooth patch (scene/patch.h) */
@@ -152,10 +153,10 @@ walk(const ctx *c, void *sc, pm_vec3 o, pm_vec3 d, int depth, pm_vec3 beta, pm_v
 			return;
 		}
 		if (depth == 0) {
-			/* The camera ray's pixel footprint filters textures
-			 * (the light pass and later bounces point-sample). */
+			/* The camera ray's footprint filters textures (the
+			 * light pass and later bounces point-sample). */
 			pm_vec3 a1, a2;
-			pm_pixel_footprint(&h, d, c->pixel_angle, &a1, &a2);
+			pm_pixel_footprint(&h, d, c->sample_angle, &a1, &a2);
 			m = pm_hit_material_fp(c->s, &h, a1, a2, &mt);
 		} else {
 			m = pm_hit_material(c->s, &h, &mt);
@@ -248,7 +249,7 @@ pm_render(const pm_frame *f, const pm_photons *map, const pm_render_opts *o,
 	const pm_estimator *est = o->estimator;
 	ctx c = {s, f->accel, &f->lights, o, est,
 	         {s, f->accel, map, f->pi, o->k, o->classical_norm, o->shrink},
-	         {s, f->accel, &f->lights}, 0.0f,
+	         {s, f->accel, &f->lights}, 0.0f, 0.0f,
 	         o->light_samples > 1 ? o->light_samples : 1, {0}, NULL};
 	pm_camera cam;
 	int W, H, fail = 0;
@@ -267,6 +268,11 @@ pm_render(const pm_frame *f, const pm_photons *map, const pm_render_opts *o,
 	if (pm_camera_init(&cam, &s->camera, err) != 0)
 		return pm_preferr(err, "%s", s->path);
 	c.pixel_angle = 2.0f * cam.tan_half / (float)cam.height;
+	/* The pixel's samples already average its area: a texture needs
+	 * filtering over their spacing only, a pixel over sqrt(spp), no finer
+	 * than an eighth of a pixel (pbrt-v4's scale of its ray differentials,
+	 * so that the two agree where squares meet a pixel's edge). */
+	c.sample_angle = c.pixel_angle * fmaxf(0.125f, 1.0f / sqrtf((float)(o->spp > 0 ? o->spp : 1)));
 	W = cam.width;
 	H = cam.height;
 	npx = (size_t)W * H;

@@ -42,8 +42,8 @@ const pm_material *pm_hit_material(const pm_scene *s, const pm_hit *h, pm_materi
 const pm_material *pm_hit_material_fp(const pm_scene *s, const pm_hit *h, pm_vec3 a1, pm_vec3 a2,
                                       pm_material *tmp);
 
-/* The footprint's axes, on h's facet, of a pixel that spans the angle
- * pixel_angle seen along the ray direction d: across, pixel_angle * h->t;
+/* The footprint's axes, on h's facet, of a camera sample that spans the
+ * angle pixel_angle seen along the ray direction d: across, pixel_angle * h->t;
  * along d's slant, that over the cosine to the facet (the cosine taken no
  * smaller than 0.02). */
 void pm_pixel_footprint(const pm_hit *h, pm_vec3 d, float pixel_angle, pm_vec3 *a1, pm_vec3 *a2);

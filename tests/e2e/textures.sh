@@ -108,14 +108,15 @@ expect_fail "unknown texture" 1 "^pm-render: bad.pms:3: material 'floor': unknow
 
 # Filtered lookups: a floor checkered in squares of half a unit to the
 # horizon, lit so that it reads its albedo (E = pi from straight above).
-# Where a pixel's footprint spans many squares (the first floor rows under
-# the horizon) each pixel reads the squares' mean, 0.5, whichever point
-# its samples land on: measured rms 0.0056 (checker, exact box mean) and
-# 0.0041 (a 2 x 2 image of texels 1 and 0, OpenImageIO's MIP levels),
-# where point sampling read 0.145 and 0.080 at these 4 samples a pixel.
-# Near the camera, where a texel spans pixels, the image is looked up as
-# before (its last rows' spread, 0.188, is what point sampling gave) and
-# the checker's squares stay sharp (0.267; 0.294 point-sampled).
+# Where a camera sample's footprint (half a pixel at 4 samples) spans many
+# squares (the first floor rows under the horizon) each pixel reads the
+# squares' mean, 0.5, whichever points its samples land on: measured rms
+# 0.0105 (checker, exact box mean) and 0.0075 (a 2 x 2 image of texels 1
+# and 0, OpenImageIO's MIP levels), where point sampling read 0.145 and
+# 0.080 at these 4 samples a pixel. Near the camera, where a texel spans
+# pixels, the image is looked up as before (its last rows' spread, 0.188,
+# is what point sampling gave) and the checker's squares stay sharp
+# (0.284; 0.294 point-sampled).
 printf 'P2\n2 2\n255\n255 0\n0 255\n' >ck.pgm
 for k in checker image; do
 	if [ $k = checker ]; then tx="texture ck checker 0.8 0.8 0.8  0.2 0.2 0.2 scale 400 400"
