@@ -5,15 +5,17 @@
  * decides what counts as target area is in compensate.h.
  *
  * Cost: one k-nearest search; one pass over the polygons that meet the cube
- * (typically 1-3), clipping each once; pairwise tests between those
- * polygons to find which can hide which, each polygon's planes and centres
- * tested against one polygon in a flat pass first (on a dense mesh the
- * pairs are the cost: bench/compcost.sh). Only polygons that something can
- * hide get sample points, and only their samples cost work per photon. All
- * geometry is double and relative to x. */
+ * (typically 1-3), clipping each once; the polygons grouped into sheets
+ * (groups()); pairwise tests between polygons of different groups to find
+ * which can hide which, a group whose box is out of reach passed over whole
+ * (on a rough mesh, many groups, the pairs are the cost: bench/compcost.sh).
+ * Only polygons that something can hide get sample points, and only their
+ * samples cost work per photon; a photon on a sheet nothing touches costs a
+ * slab test and a dot product. All geometry is double and relative to x. */
 #include "estimators/compensate.h"
 
 #include <float.h>
+#include <limits.h>
 #include <math.h>
 #include <stdlib.h>
 
@@ -42,10 +44,18 @@
 /* In a polygon's list of what its backward rays may meet: a solid that is
  * no layer over it, which matters only when met from behind. */
 #define MATTER (1 << 30)
-/* More polygons than this in one cube (a finely tessellated sphere): the
- * fates are not followed (every ray counts as open), which keeps the cost
- * of such cubes bounded; what x' sees still is. */
-#define FATE_MAX_POLYS 96
+/* A smooth patch's polygons in the cube (scene/patch.h) whose sides that
+ * count all lie within this of their mean (cos 30 degrees, as SMOOTH_COS)
+ * are one sheet: one surface at the cube's scale, many facets (a curved
+ * or scanned mesh). A sheet hides none of itself from x', and a backward
+ * ray leaving it does not meet it again, as holds exactly for a flat
+ * polygon and for rays steeper than the sheet's slopes. */
+#define SHEET_COS 0.866
+/* More groups than this in one cube (a rough mesh, facets facing every
+ * way): the fates are not followed (every ray counts as open), which keeps
+ * the cost of such cubes bounded; what x' sees still is. A smooth mesh of
+ * any density is a few sheets. */
+#define FATE_MAX_GROUPS 96
 /* ... a polygon wholly in front of it. */
 #define FRONT (1 << 29)
 #define IDX(e) ((e) & (FRONT - 1))
@@ -77,7 +87,30 @@ typedef struct cpoly {
 	double aopen;          /* area seen from x', not covered by a polygon on its plane */
 	int ndyn;              /* samples whose fate depends on the direction */
 	double adyn;           /* ... their area seen from x' */
+	int grp;               /* its group (cgroup) */
 } cpoly;
+
+/* The cube's polygons in groups: a sheet (see SHEET_COS), or one polygon.
+ * Groups are numbered by their lowest polygon, and a group's polygons are
+ * in ascending order, so walking groups and then their polygons visits the
+ * polygons in their own order where every group is one polygon. */
+typedef struct cgroup {
+	uint32_t key;          /* smooth patch */
+	int p0, np;            /* its polygons: sc->gp[p0 .. p0 + np) */
+	int sheet;             /* a sheet of two polygons or more */
+	int xsheet;            /* ... that x lies on */
+	int simple;            /* every polygon seen whole with open fates, so
+	                          no photon needs to know which one it is on */
+	pm_dvec3 M;            /* the mean of the sides that count, unit */
+	double cmin;           /* the least Ne . M, and sqrt(1 - cmin^2): */
+	double sina;           /* Psi . M above it faces every polygon */
+	double slo, shi;       /* M . v over its clipped vertices */
+	pm_dvec3 c;            /* centre and radius of a sphere around it */
+	double rad;
+	double lo[3], hi[3];   /* its box */
+	pm_dvec3 V;            /* sum of A Ne over polygons not parallel to n */
+	double apar;           /* sum of A over those parallel, facing n */
+} cgroup;
 
 struct pm_comp_scratch {
 	int k;
@@ -114,6 +147,16 @@ struct pm_comp_scratch {
 	                          and one plane's for every centre */
 	int plcap, tcap;
 	int npyr, pyrcap;
+	cgroup *gr;            /* groups, and past ng tentative ones */
+	int ngr, grcap;
+	int *gp;               /* polygons by group, then each one's tentative group */
+	int gpcap;
+	int *ht;               /* smooth patch -> tentative group */
+	int htcap;
+	int *gm;               /* groups that may hold one photon */
+	int gmcap;
+	int *mark;             /* per polygon: on the list being closed if stamp */
+	int markcap, marked, stamp;
 	int oom;
 	pm_comp_stats last;
 };
@@ -174,6 +217,11 @@ pm_comp_scratch_free(pm_comp_scratch *sc)
 	free(sc->span);
 	free(sc->pl);
 	free(sc->t);
+	free(sc->gr);
+	free(sc->gp);
+	free(sc->ht);
+	free(sc->gm);
+	free(sc->mark);
 	free(sc);
 }
 
@@ -538,76 +586,275 @@ between(const pm_comp_scratch *sc, const cpoly *P, const cpoly *B, pm_dvec3 xo, 
 	return 1;
 }
 
+/* Tentative groups by key through the hash table sc->ht (hn slots): each
+ * polygon's in tg, their count, areas' sums of Ne in M, cones in cmin. */
+static int
+tentative(pm_comp_scratch *sc, const uint32_t *key, cgroup *tent, int *tg, int hn)
+{
+	int nt = 0;
+
+	for (int i = 0; i < hn; i++)
+		sc->ht[i] = -1;
+	for (int a = 0; a < sc->ng; a++) {
+		const cpoly *P = &sc->g[a];
+		uint32_t hs = (key[a] * 2654435761u) & (uint32_t)(hn - 1);
+		int t;
+		for (;; hs = (hs + 1) & (uint32_t)(hn - 1)) {
+			t = sc->ht[hs];
+			if (t < 0) {
+				t = sc->ht[hs] = nt++;
+				tent[t] = (cgroup){.key = key[a], .p0 = -1};
+				break;
+			}
+			if (tent[t].key == key[a])
+				break;
+		}
+		tg[a] = t;
+		tent[t].np++;
+		tent[t].M = pm_dadd(tent[t].M, pm_dscale(P->Ne, P->A));
+	}
+	for (int t = 0; t < nt; t++) {
+		double l = pm_dlen(tent[t].M);
+		tent[t].M = l > 0 ? pm_dscale(tent[t].M, 1 / l) : pm_dv3(0, 0, 0);
+		tent[t].cmin = l > 0 ? 1 : -1;
+	}
+	for (int a = 0; a < sc->ng; a++)
+		tent[tg[a]].cmin = dmin(tent[tg[a]].cmin, pm_ddot(sc->g[a].Ne, tent[tg[a]].M));
+	return nt;
+}
+
+/* Groups the cube's polygons (cgroup). A smooth patch's polygons in the
+ * cube whose sides that count lie within SHEET_COS of their mean are one
+ * sheet; where they do not (the patch curves or is rough at the cube's
+ * scale), those within SHEET_COS of that mean are one sheet if they lie
+ * within it of their own mean too, and the rest are each a group of their
+ * own, as is every polygon of no smooth patch. Needs every polygon's Ne, A,
+ * xon and xpar. */
+static int
+groups(pm_comp_scratch *sc, const uint32_t *patch, pm_dvec3 n)
+{
+	int ng = sc->ng, hn = 16, nf = 0;
+
+	while (hn < 2 * ng)
+		hn *= 2;
+	if (!grow((void **)&sc->ht, &sc->htcap, 0, hn, sizeof *sc->ht) ||
+	    !grow((void **)&sc->gr, &sc->grcap, 0, 3 * ng, sizeof *sc->gr) ||
+	    !grow((void **)&sc->gp, &sc->gpcap, 0, 3 * ng, sizeof *sc->gp) ||
+	    !grow((void **)&sc->gm, &sc->gmcap, 0, ng, sizeof *sc->gm) ||
+	    !grow((void **)&sc->mark, &sc->markcap, 0, ng, sizeof *sc->mark) ||
+	    !grow((void **)&sc->t, &sc->tcap, 0, ng, sizeof *sc->t))
+		return 0;
+	/* New marks start unset; stamps start over before they could wrap. */
+	for (int i = sc->marked; i < sc->markcap; i++)
+		sc->mark[i] = 0;
+	sc->marked = sc->markcap;
+	if (sc->stamp > INT_MAX - ng - 2) {
+		for (int i = 0; i < sc->markcap; i++)
+			sc->mark[i] = 0;
+		sc->stamp = 0;
+	}
+	cgroup *tent = sc->gr + ng, *sub = sc->gr + 2 * ng;
+	int *tg = sc->gp + ng, *sg = sc->gp + 2 * ng;
+	/* sc->t holds the keys while the table is built from them. */
+	uint32_t *key = (uint32_t *)(void *)sc->t;
+	for (int a = 0; a < ng; a++)
+		key[a] = patch ? patch[sc->g[a].g] : sc->g[a].g;
+	tentative(sc, key, tent, tg, hn);
+	for (int a = 0; a < ng; a++) {
+		const cgroup *T = &tent[tg[a]];
+		if (T->np > 1 && (T->cmin >= SHEET_COS || pm_ddot(sc->g[a].Ne, T->M) >= SHEET_COS))
+			key[a] = (uint32_t)tg[a];
+		else
+			key[a] = 0x80000000u | (uint32_t)a;
+	}
+	tentative(sc, key, sub, sg, hn);
+	/* Final numbers in order of each group's lowest polygon. */
+	for (int a = 0; a < ng; a++) {
+		cgroup *T = &sub[sg[a]];
+		int sheet = T->np > 1 && T->cmin >= SHEET_COS;
+		if (!sheet || T->p0 < 0) {
+			sc->gr[nf] = (cgroup){.key = T->key, .sheet = sheet, .M = T->M, .cmin = T->cmin};
+			if (sheet)
+				T->p0 = nf;
+			sc->g[a].grp = nf++;
+		} else
+			sc->g[a].grp = T->p0;
+		sc->gr[sc->g[a].grp].np++;
+	}
+	sc->ngr = nf;
+	for (int G = 0, p0 = 0; G < nf; G++) {
+		sc->gr[G].p0 = p0;
+		p0 += sc->gr[G].np;
+		sc->gr[G].np = 0;
+	}
+	for (int a = 0; a < ng; a++) {
+		cgroup *G = &sc->gr[sc->g[a].grp];
+		sc->gp[G->p0 + G->np++] = a;
+	}
+	for (int gi = 0; gi < nf; gi++) {
+		cgroup *G = &sc->gr[gi];
+		double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
+		G->slo = INFINITY;
+		G->shi = -INFINITY;
+		G->sina = G->cmin > 0 ? sqrt(1 - G->cmin * G->cmin) : 2;
+		for (int i = G->p0; i < G->p0 + G->np; i++) {
+			const cpoly *P = &sc->g[sc->gp[i]];
+			for (int a = 0; a < 3; a++) {
+				lo[a] = dmin(lo[a], P->lo[a]);
+				hi[a] = dmax(hi[a], P->hi[a]);
+			}
+			G->xsheet |= P->xon;
+			if (P->xpar)
+				G->apar += pm_ddot(P->Ne, n) > 0 ? P->A : 0;
+			else
+				G->V = pm_dadd(G->V, pm_dscale(P->Ne, P->A));
+			for (int v = 0; v < P->nv && G->sheet; v++) {
+				double m = pm_ddot(G->M, sc->cv[P->v0 + v]);
+				G->slo = dmin(G->slo, m);
+				G->shi = dmax(G->shi, m);
+			}
+		}
+		G->xsheet &= G->sheet;
+		for (int a = 0; a < 3; a++) {
+			G->lo[a] = lo[a];
+			G->hi[a] = hi[a];
+		}
+		G->c = pm_dscale(pm_dadd(pm_dv3(lo[0], lo[1], lo[2]), pm_dv3(hi[0], hi[1], hi[2])), 0.5);
+		G->rad = 0.5 * pm_dlen(pm_dv3(hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]));
+	}
+	return 1;
+}
+
+/* The largest and the smallest of M . v - m over group G's box, widened by
+ * rounding's share. */
+static void
+box_span(const cgroup *G, pm_dvec3 M, double m, double *lo, double *hi)
+{
+	double c[3] = {M.x, M.y, M.z}, a = -m, b = -m, r = fabs(m);
+
+	for (int k = 0; k < 3; k++) {
+		double p = c[k] * G->lo[k], q = c[k] * G->hi[k];
+		a += dmin(p, q);
+		b += dmax(p, q);
+		r += dmax(fabs(p), fabs(q));
+	}
+	*lo = a - 1e-12 * r;
+	*hi = b + 1e-12 * r;
+}
+
+/* 1 if no polygon of group G can hide part of P from x': G's box wholly
+ * behind P's plane as x' sees it, or beyond a plane of P's pyramid. */
+static int
+group_not_between(const pm_comp_scratch *sc, const cpoly *P, const cgroup *G, pm_dvec3 xo, double eps)
+{
+	double sxo = pm_ddot(P->N, xo) - P->d, lo, hi;
+
+	box_span(G, P->N, P->d, &lo, &hi);
+	if (sxo > 0 ? hi <= eps : lo >= -eps)
+		return 1;
+	for (int p = 0; p < sc->npyr; p++) {
+		box_span(G, sc->pyr[p], pm_ddot(sc->pyr[p], xo), &lo, &hi);
+		if (hi < -eps)
+			return 1;
+	}
+	return 0;
+}
+
+/* Appends e to sc->bl; on a failed allocation sets sc->oom. */
+static inline void
+push(pm_comp_scratch *sc, int e)
+{
+	if (sc->nbl == sc->blcap && !grow((void **)&sc->bl, &sc->blcap, sc->nbl, 1, sizeof *sc->bl)) {
+		sc->oom = 1;
+		return;
+	}
+	sc->bl[sc->nbl++] = e;
+}
+
 /* A ray that meets the back of a solid has gone through its front first,
  * unless it started inside: so where a list holds a solid met from behind,
  * it holds the rest of that solid's polygons in the cube too (each again
  * counting only from behind), and a front met first ends the ray there as
  * open. The polygon the ray starts on is not among them (skip, or for x's
- * list those x lies on): a ray leaving a face's front never meets that face,
- * and in a solid of several parts (a chair's seat, legs and back) x lies
- * behind the planes of other parts' faces while outside them all. Appends
- * to sc->bl from f0; returns the new length. */
-static int
-close_matter(pm_comp_scratch *sc, int f0, int skip)
+ * list those x lies on), nor its sheet (sgrp, or -1): a ray leaving a face's
+ * front never meets that face, and in a solid of several parts (a chair's
+ * seat, legs and back) x lies behind the planes of other parts' faces while
+ * outside them all. Appends to sc->bl from f0. */
+static void
+close_matter(pm_comp_scratch *sc, int f0, int skip, int sgrp)
 {
-	int n = sc->nbl;
+	int n = sc->nbl, objs[8], nobj = 0, st = ++sc->stamp;
 
-	for (int b = 0; b < sc->ng; b++) {
-		int in = 0, solid = 0;
-		if (b == skip || (skip < 0 && sc->g[b].xon))
+	for (int i = f0; i < n; i++) {
+		int o = sc->g[IDX(sc->bl[i])].obj, k = 0;
+		sc->mark[IDX(sc->bl[i])] = st;
+		if (!(sc->bl[i] & MATTER) || nobj < 0)
 			continue;
-		for (int i = f0; i < n && !in; i++) {
-			int e = sc->bl[i];
-			in = IDX(e) == b;
-			solid |= (e & MATTER) && sc->g[IDX(e)].obj == sc->g[b].obj;
-		}
-		if (solid && !in)
-			sc->bl[sc->nbl++] = b | MATTER;
+		while (k < nobj && objs[k] != o)
+			k++;
+		if (k == nobj)
+			nobj = nobj < 8 ? (objs[nobj] = o, nobj + 1) : -1;
 	}
-	return sc->nbl;
+	/* Only the groups of those solids (past eight of them, every group,
+	 * each polygon asked). */
+	for (int G = 0; G < sc->ngr && nobj != 0; G++) {
+		const cgroup *Gr = &sc->gr[G];
+		int o = sc->g[sc->gp[Gr->p0]].obj, k = 0;
+		while (k < nobj && objs[k] != o)
+			k++;
+		if (G == sgrp || (nobj > 0 && k == nobj))
+			continue;
+		for (int gi = Gr->p0; gi < Gr->p0 + Gr->np; gi++) {
+			int b = sc->gp[gi], solid = nobj > 0;
+			if (b == skip || (skip < 0 && sc->g[b].xon) || sc->mark[b] == st)
+				continue;
+			for (int i = f0; i < n && !solid; i++)
+				solid = (sc->bl[i] & MATTER) && sc->g[IDX(sc->bl[i])].obj == o;
+			if (solid)
+				push(sc, b | MATTER);
+		}
+	}
+}
+
+/* 1 if no polygon of group G is on or in front of plane (M, m) beyond eps. */
+static int
+group_behind(const cgroup *G, pm_dvec3 M, double m, double eps)
+{
+	double lo, hi;
+
+	box_span(G, M, m, &lo, &hi);
+	return hi < -eps;
 }
 
 /* For each polygon: which others may hide part of it from x' (R list), and
  * which a backward ray from it may meet so that its fate differs from the
  * open one (F list): layers over it (|N_b . N| >= LAYER_COS) with some part
  * in front of it or lying on it facing it; solids it lies partly behind.
- * Then the same F list for x itself (index ng). */
+ * Then the same F list for x itself (index ng). Polygons of one sheet are
+ * never on each other's lists; a group wholly out of reach is passed over
+ * whole. */
 static int
 pair_lists(pm_comp_scratch *sc, const unsigned char *cvx, pm_dvec3 xo, pm_dvec3 n, double eps,
            int *xf0, int *nxf)
 {
-	int ng = sc->ng;
+	int ng = sc->ng, ngr = sc->ngr, follow = ngr <= FATE_MAX_GROUPS;
 
 	sc->nbl = 0;
-	if (!grow((void **)&sc->bl, &sc->blcap, 0, 3 * ng * ng + 3 * ng + 1, sizeof *sc->bl))
-		return 0;
-	if (!grow((void **)&sc->span, &sc->spancap, 0, 2 * ng, sizeof *sc->span))
+	if (!grow((void **)&sc->span, &sc->spancap, 0, 2 * ng, sizeof *sc->span) ||
+	    !grow((void **)&sc->pl, &sc->plcap, 0, ng, sizeof *sc->pl))
 		return 0;
 	int xobj[4], nxobj = 0;
 
 	for (int b = 0; b < ng; b++)
 		if (sc->g[b].xon && nxobj < 4)
 			xobj[nxobj++] = sc->g[b].obj;
-	if (!grow((void **)&sc->pl, &sc->plcap, 0, 9 * ng, sizeof *sc->pl) ||
-	    !grow((void **)&sc->t, &sc->tcap, 0, 2 * ng, sizeof *sc->t))
-		return 0;
-	double *plx = sc->pl, *ply = plx + ng, *plz = ply + ng, *pld = plz + ng, *plsx = pld + ng;
-	double *ccx = plsx + ng, *ccy = ccx + ng, *ccz = ccy + ng, *crad = ccz + ng;
-	for (int b = 0; b < ng; b++) {
-		const cpoly *B = &sc->g[b];
-		plx[b] = B->N.x;
-		ply[b] = B->N.y;
-		plz[b] = B->N.z;
-		pld[b] = B->d;
-		plsx[b] = pm_ddot(B->N, xo) - B->d;
-		ccx[b] = B->c.x;
-		ccy[b] = B->c.y;
-		ccz[b] = B->c.z;
-		crad[b] = B->rad;
-	}
+	double *plsx = sc->pl;
+	for (int b = 0; b < ng; b++)
+		plsx[b] = pm_ddot(sc->g[b].N, xo) - sc->g[b].d;
 	for (int a = 0; a < ng; a++) {
 		cpoly *P = &sc->g[a];
-		int own = nxobj == 4;
+		const cgroup *SA = &sc->gr[P->grp];
+		int own = nxobj == 4 || SA->xsheet, sgrp = SA->sheet ? P->grp : -1;
 		P->r0 = sc->nbl;
 		/* The back of a solid, seen from outside it, is hidden by the
 		 * solid itself, unless x lies on that solid (a face across a
@@ -617,101 +864,114 @@ pair_lists(pm_comp_scratch *sc, const unsigned char *cvx, pm_dvec3 xo, pm_dvec3 
 		P->unseen = P->solid && !own && pm_ddot(P->N, xo) - P->d < -eps;
 		if (!P->unseen && P->lit && !pyramid(sc, P, xo, eps))
 			return 0;
-		/* Which planes P's bounding sphere may reach beyond (span()'s
-		 * first step, for every plane at once): one pass that does
-		 * nothing else, then the other tests where it says maybe. */
-		double *t = sc->t, *u = t + ng, cx = P->c.x, cy = P->c.y, cz = P->c.z;
-		double nx = P->N.x, ny = P->N.y, nz = P->N.z, pd = P->d;
-		for (int b = 0; b < ng && !P->unseen && P->lit; b++) {
-			t[b] = plx[b] * cx + ply[b] * cy + plz[b] * cz - pld[b];
-			u[b] = nx * ccx[b] + ny * ccy[b] + nz * ccz[b] - pd;
-		}
-		for (int b = 0; b < ng && !P->unseen && P->lit; b++) {
-			const cpoly *B;
-			double sx = plsx[b], lo, hi;
-			if (fabs(sx) <= eps || b == a)
+		for (int G = 0; G < ngr && !P->unseen && P->lit; G++) {
+			const cgroup *Gr = &sc->gr[G];
+			/* One convex solid's faces never hide each other. */
+			if (G == sgrp || (cvx[P->obj] && sc->g[sc->gp[Gr->p0]].obj == P->obj))
 				continue;
-			/* P's sphere wholly on the side of B's plane where x'
-			 * is: P cannot cross it (span() would say the same). */
-			if (fabs(t[b]) > P->rad && (sx > 0 ? t[b] - P->rad >= -eps : t[b] + P->rad <= eps))
+			if (Gr->np > 1 && group_not_between(sc, P, Gr, xo, eps))
 				continue;
-			B = &sc->g[b];
-			/* One convex solid's faces never hide each other, and x
-			 * sees its own solid's nearly flat neighbours through it. */
-			if ((B->obj == P->obj && cvx[P->obj]) ||
-			    (B->xon && B->solid && B->obj == P->obj && own))
-				continue;
-			if (fabs(t[b]) > P->rad)
-				lo = t[b] - P->rad, hi = t[b] + P->rad;
-			else
-				span_verts(sc, P, B->N, B->d, &lo, &hi);
-			if ((sx > 0 ? lo < -eps : hi > eps) && between(sc, P, B, xo, eps, u[b]))
-				sc->bl[sc->nbl++] = b;
+			for (int gi = Gr->p0; gi < Gr->p0 + Gr->np; gi++) {
+				int b = sc->gp[gi];
+				const cpoly *B = &sc->g[b];
+				double sx = plsx[b], lo, hi, t, u;
+				if (fabs(sx) <= eps || b == a)
+					continue;
+				/* P's sphere wholly on the side of B's plane where x'
+				 * is: P cannot cross it (span() would say the same). */
+				t = pm_ddot(B->N, P->c) - B->d;
+				if (fabs(t) > P->rad && (sx > 0 ? t - P->rad >= -eps : t + P->rad <= eps))
+					continue;
+				/* x sees its own solid's nearly flat neighbours through it. */
+				if (B->xon && B->solid && B->obj == P->obj && own)
+					continue;
+				if (fabs(t) > P->rad)
+					lo = t - P->rad, hi = t + P->rad;
+				else
+					span_verts(sc, P, B->N, B->d, &lo, &hi);
+				u = pm_ddot(P->N, B->c) - P->d;
+				if ((sx > 0 ? lo < -eps : hi > eps) && between(sc, P, B, xo, eps, u))
+					push(sc, b);
+			}
 		}
 		P->nr = sc->nbl - P->r0;
 		P->f0 = sc->nbl;
-		/* span() of every polygon about P's plane, its first step at once. */
-		double ex = P->Ne.x, ey = P->Ne.y, ez = P->Ne.z, de = P->de;
-		for (int b = 0; b < ng && ng <= FATE_MAX_POLYS && P->lit; b++)
-			t[b] = ex * ccx[b] + ey * ccy[b] + ez * ccz[b] - de;
-		for (int pass = 0; pass < 2 && ng <= FATE_MAX_POLYS && P->lit; pass++) {
-			for (int b = 0; b < ng; b++) {
-				const cpoly *B = &sc->g[b];
-				double lo, hi, plo, phi;
-				int layer = fabs(pm_ddot(B->N, P->N)) >= LAYER_COS, cand = 0, on;
-				if (b == a)
+		for (int pass = 0; pass < 2 && P->lit && follow; pass++) {
+			for (int G = 0; G < ngr; G++) {
+				const cgroup *Gr = &sc->gr[G];
+				if (G == sgrp || (Gr->np > 1 && group_behind(Gr, P->Ne, P->de, eps)))
 					continue;
-				if (pass == 0 && fabs(t[b]) > crad[b]) {
-					sc->span[2 * b] = t[b] - crad[b];
-					sc->span[2 * b + 1] = t[b] + crad[b];
-				} else if (pass == 0)
-					span_verts(sc, B, P->Ne, P->de, &sc->span[2 * b], &sc->span[2 * b + 1]);
-				lo = sc->span[2 * b];
-				hi = sc->span[2 * b + 1];
-				on = layer && hi <= eps && lo >= -eps;
-				if (on != (pass == 0))
-					continue;
-				if (on)
-					/* On P's plane: resting on it facing it, or the
-					 * same surface twice (the lower number wins). */
-					cand = pm_ddot(B->Ne, P->Ne) < 0 || B->g < P->g;
-				else if (layer && hi > eps)
-					cand = 1;
-				else if (B->solid && hi > eps) {
-					span(sc, P, B->N, B->d, &plo, &phi);
-					cand = plo < -eps ? 2 : 0;
+				for (int gi = Gr->p0; gi < Gr->p0 + Gr->np; gi++) {
+					int b = sc->gp[gi];
+					const cpoly *B = &sc->g[b];
+					double lo, hi, plo, phi;
+					int layer = fabs(pm_ddot(B->N, P->N)) >= LAYER_COS, cand = 0, on;
+					if (b == a)
+						continue;
+					if (pass == 0) {
+						/* span() of B about P's plane */
+						double t = pm_ddot(P->Ne, B->c) - P->de;
+						if (fabs(t) > B->rad) {
+							sc->span[2 * b] = t - B->rad;
+							sc->span[2 * b + 1] = t + B->rad;
+						} else
+							span_verts(sc, B, P->Ne, P->de, &sc->span[2 * b], &sc->span[2 * b + 1]);
+					}
+					lo = sc->span[2 * b];
+					hi = sc->span[2 * b + 1];
+					on = layer && hi <= eps && lo >= -eps;
+					if (on != (pass == 0))
+						continue;
+					if (on)
+						/* On P's plane: resting on it facing it, or the
+						 * same surface twice (the lower number wins). */
+						cand = pm_ddot(B->Ne, P->Ne) < 0 || B->g < P->g;
+					else if (layer && hi > eps)
+						cand = 1;
+					else if (B->solid && hi > eps) {
+						span(sc, P, B->N, B->d, &plo, &phi);
+						cand = plo < -eps ? 2 : 0;
+					}
+					if (cand)
+						push(sc, (cand == 2 ? b | MATTER : b) | (!on && lo >= -eps ? FRONT : 0));
 				}
-				if (cand)
-					sc->bl[sc->nbl++] = (cand == 2 ? b | MATTER : b) |
-						(!on && lo >= -eps ? FRONT : 0);
 			}
 			if (pass == 0)
 				P->nfc = sc->nbl - P->f0;
 		}
-		if (ng <= FATE_MAX_POLYS && P->lit)
-			close_matter(sc, P->f0 + P->nfc, a);
-		if (ng > FATE_MAX_POLYS)
-			P->nfc = 0;
+		if (P->lit && follow)
+			close_matter(sc, P->f0 + P->nfc, a, sgrp);
 		P->nf = sc->nbl - P->f0;
 	}
 	*xf0 = sc->nbl;
-	for (int b = 0; b < ng && ng <= FATE_MAX_POLYS; b++) {
-		const cpoly *B = &sc->g[b];
-		double lo, hi;
-		if (B->xon)
+	for (int G = 0; G < ngr && follow; G++) {
+		const cgroup *Gr = &sc->gr[G];
+		if (Gr->xsheet || (Gr->np > 1 && group_behind(Gr, n, 0, -eps)))
 			continue;
-		span(sc, B, n, 0, &lo, &hi);
-		if (!(hi > eps))
-			continue;
-		if (fabs(pm_ddot(B->N, n)) >= LAYER_COS)
-			sc->bl[sc->nbl++] = b;
-		else if (B->solid && B->d > eps)
-			sc->bl[sc->nbl++] = b | MATTER;
+		for (int gi = Gr->p0; gi < Gr->p0 + Gr->np; gi++) {
+			const cpoly *B = &sc->g[sc->gp[gi]];
+			double lo, hi;
+			if (B->xon)
+				continue;
+			span(sc, B, n, 0, &lo, &hi);
+			if (!(hi > eps))
+				continue;
+			if (fabs(pm_ddot(B->N, n)) >= LAYER_COS)
+				push(sc, sc->gp[gi]);
+			else if (B->solid && B->d > eps)
+				push(sc, sc->gp[gi] | MATTER);
+		}
 	}
-	if (ng <= FATE_MAX_POLYS)
-		close_matter(sc, *xf0, -1);
+	int xs = -1;
+	for (int G = 0; G < ngr && xs < 0; G++)
+		xs = sc->gr[G].xsheet ? G : -1;
+	if (follow)
+		close_matter(sc, *xf0, -1, xs);
 	*nxf = sc->nbl - *xf0;
-	return 1;
+	/* Room for the candidates the photons' loop lists past the end. */
+	if (!grow((void **)&sc->bl, &sc->blcap, sc->nbl, ng + 1, sizeof *sc->bl))
+		sc->oom = 1;
+	return !sc->oom;
 }
 
 /* Sample points of P: the centres of the G x G cells of its bounding
@@ -952,6 +1212,8 @@ weights(const pm_polyindex *pi, pm_vec3 x, pm_vec3 n,
 		for (int j = 0; j < na && !P->lit; j++)
 			P->lit = facing(P, sc->psi[j], sc->c[j], nd) > 0;
 	}
+	if (!groups(sc, pi->patch, nd))
+		goto out;
 	if (sc->ng > 1) {
 		if (!pair_lists(sc, pi->convex, xo, nd, eps, &xf0, &nxf))
 			goto out;
@@ -964,34 +1226,75 @@ weights(const pm_polyindex *pi, pm_vec3 x, pm_vec3 n,
 				z.sampled++;
 			}
 	}
+	for (int G = 0; G < sc->ngr; G++) {
+		cgroup *Gr = &sc->gr[G];
+		Gr->simple = Gr->sheet;
+		for (int gi = Gr->p0; gi < Gr->p0 + Gr->np && Gr->simple; gi++) {
+			const cpoly *P = &sc->g[sc->gp[gi]];
+			Gr->simple = !P->unseen && P->nr == 0 && P->nf == 0;
+		}
+	}
 
 	/* Which photons count: each lies on a polygon of the cube, on the side
 	 * that faces its light and x', where x' sees it, and its backward ray
 	 * meets what x's does. */
 	for (int j = 0; j < na; j++) {
-		int i = sc->act[j], own = -1, fy;
+		int i = sc->act[j], own = -1, fy, nm = 0;
 		pm_dvec3 r = pm_dsub(pm_dfromf(pos[i]), xd), psi = sc->psi[j];
 		sc->own[j] = -1;
+		/* The groups that may hold it: a sheet by its slab, a polygon by
+		 * its plane. */
+		for (int G = 0; G < sc->ngr; G++) {
+			const cgroup *Gr = &sc->gr[G];
+			if (Gr->sheet) {
+				double m = pm_ddot(Gr->M, r);
+				if (m < Gr->slo - eps || m > Gr->shi + eps)
+					continue;
+			} else {
+				const cpoly *P = &sc->g[sc->gp[Gr->p0]];
+				if (fabs(pm_ddot(P->N, r) - P->d) > eps)
+					continue;
+			}
+			sc->gm[nm++] = G;
+		}
+		/* On one sheet whose every polygon is seen whole with open
+		 * fates, facing all of them: which one holds it does not matter. */
+		if (nm == 1 && sc->gr[sc->gm[0]].simple &&
+		    pm_ddot(psi, sc->gr[sc->gm[0]].M) > sc->gr[sc->gm[0]].sina + 1e-9) {
+			sc->fx[j] = fate(sc, sc->bl + xf0, nxf, pm_dv3(0, 0, 0), psi, eps);
+			if (sc->fx[j] != -1)
+				z.hidden++;
+			else
+				sc->own[j] = -2 - sc->gm[0];
+			continue;
+		}
 		/* A photon in the cube lies on one of its polygons: where only
 		 * one plane holds it, that one (no inside test needed). */
 		int nplane = 0, first = -1;
-		for (int a = 0; a < sc->ng; a++) {
-			const cpoly *P = &sc->g[a];
-			if (fabs(pm_ddot(P->N, r) - P->d) > eps)
-				continue;
-			if (nplane++ == 0)
-				first = a;
+		for (int k = 0; k < nm; k++) {
+			const cgroup *Gr = &sc->gr[sc->gm[k]];
+			for (int gi = Gr->p0; gi < Gr->p0 + Gr->np; gi++) {
+				const cpoly *P = &sc->g[sc->gp[gi]];
+				if (fabs(pm_ddot(P->N, r) - P->d) > eps)
+					continue;
+				if (nplane++ == 0)
+					first = sc->gp[gi];
+			}
 		}
 		if (nplane == 1)
 			own = pm_ddot(psi, sc->g[first].Ne) > 0 ? first : -1;
 		/* Where several do (an edge; the same surface twice), the
 		 * lowest polygon number that faces it and holds it: the one the
 		 * target area keeps of a surface given twice. */
-		for (int a = first; nplane > 1 && a < sc->ng; a++) {
-			const cpoly *P = &sc->g[a];
-			if (fabs(pm_ddot(P->N, r) - P->d) <= eps && pm_ddot(psi, P->Ne) > 0 &&
-			    (own < 0 || P->g < sc->g[own].g) && inside(sc, P, r, eps, 1))
-				own = a;
+		for (int k = 0; k < nm && nplane > 1; k++) {
+			const cgroup *Gr = &sc->gr[sc->gm[k]];
+			for (int gi = Gr->p0; gi < Gr->p0 + Gr->np; gi++) {
+				int a = sc->gp[gi];
+				const cpoly *P = &sc->g[a];
+				if (fabs(pm_ddot(P->N, r) - P->d) <= eps && pm_ddot(psi, P->Ne) > 0 &&
+				    (own < 0 || P->g < sc->g[own].g) && inside(sc, P, r, eps, 1))
+					own = a;
+			}
 		}
 		if (own < 0) {
 			z.hidden++;
@@ -1018,52 +1321,73 @@ weights(const pm_polyindex *pi, pm_vec3 x, pm_vec3 n,
 		int own = sc->own[j];
 		double A = 0, c = sc->c[j];
 		pm_dvec3 psi = sc->psi[j];
-		if (own < 0)
+		if (own == -1)
 			continue;
-		for (int a = 0; a < sc->ng; a++) {
-			const cpoly *P = &sc->g[a];
-			double f = facing(P, psi, c, nd), s = 0;
-			if (!(f > 0) || P->unseen)
-				continue;
-			/* The polygons off P's plane that a backward ray from P may
-			 * meet along psi. */
-			int nc = 0;
-			for (int b = P->nfc; b < P->nf && P->ndyn > 0; b++)
-				if (reach(sc, P, &sc->g[IDX(sc->bl[P->f0 + b])], psi, eps))
-					cand[nc++] = sc->bl[P->f0 + b];
-			if (nc == 0 && sc->fx[j] < 0) {
-				A += f * (P->aopen + P->adyn);
-				continue;
-			}
-			if (nc == 1 && P->nr == 0 && P->nfc == 0 && P->convex && (cand[0] & FRONT)) {
-				/* One polygon in front of P, all of P seen: what it
-				 * covers of P along psi, exactly. */
-				const cpoly *B = &sc->g[IDX(cand[0])];
-				double dn = pm_ddot(B->N, psi), ov = 0;
-				int fb = (cand[0] & MATTER) && dn < 0 ? -1 : 2 * B->obj + (dn > 0);
-				if (fb >= 0) {
-					if (!grow((void **)&sc->ov, &sc->ovcap, 0, 2 * (B->nv + P->nv) + 8, sizeof *sc->ov))
-						goto out;
-					ov = pm_overlap_area(sc->cv + B->v0, B->nv, sc->cv + P->v0, P->nv, P->N, psi, sc->ov);
+		for (int G = 0; G < sc->ngr; G++) {
+			const cgroup *Gr = &sc->gr[G];
+			if (Gr->simple) {
+				/* Seen whole, open fates: all of it or nothing. */
+				if (sc->fx[j] >= 0)
+					continue;
+				if (pm_ddot(psi, Gr->M) > Gr->sina + 1e-9) {
+					A += c * Gr->apar + pm_ddot(psi, Gr->V);
+					continue;
 				}
-				s = sc->fx[j] < 0 ? P->A - ov : sc->fx[j] == fb ? ov : 0;
-				A += f * dmax(0, s);
+				for (int gi = Gr->p0; gi < Gr->p0 + Gr->np; gi++) {
+					const cpoly *P = &sc->g[sc->gp[gi]];
+					double f = facing(P, psi, c, nd);
+					A += f > 0 ? f * P->A : 0;
+				}
 				continue;
 			}
-			int hit = 0;
-			for (int t = P->s0; t < P->s0 + P->ndyn && nc > 0; t++)
-				hit += fate(sc, cand, nc, sc->sp[t], psi, eps) == sc->fx[j];
-			for (int t = P->s0 + P->ndyn; t < P->s0 + P->ns; t++)
-				hit += sc->sf[t] == sc->fx[j];
-			/* An unsampled polygon has no cells (ncell 0): hit is 0 there,
-			 * and 0 * (A / 0) would be NaN. */
-			s = (sc->fx[j] < 0 ? P->aopen + (nc > 0 ? 0 : P->adyn) : 0) +
-			    (hit > 0 ? hit * (P->A / P->ncell) : 0);
-			A += f * s;
+			for (int gi = Gr->p0; gi < Gr->p0 + Gr->np; gi++) {
+				const cpoly *P = &sc->g[sc->gp[gi]];
+				double f = facing(P, psi, c, nd), s = 0;
+				if (!(f > 0) || P->unseen)
+					continue;
+				/* The polygons off P's plane that a backward ray from P may
+				 * meet along psi. */
+				int nc = 0;
+				for (int b = P->nfc; b < P->nf && P->ndyn > 0; b++)
+					if (reach(sc, P, &sc->g[IDX(sc->bl[P->f0 + b])], psi, eps))
+						cand[nc++] = sc->bl[P->f0 + b];
+				if (nc == 0 && sc->fx[j] < 0) {
+					A += f * (P->aopen + P->adyn);
+					continue;
+				}
+				if (nc == 1 && P->nr == 0 && P->nfc == 0 && P->convex && (cand[0] & FRONT)) {
+					/* One polygon in front of P, all of P seen: what it
+					 * covers of P along psi, exactly. */
+					const cpoly *B = &sc->g[IDX(cand[0])];
+					double dn = pm_ddot(B->N, psi), ov = 0;
+					int fb = (cand[0] & MATTER) && dn < 0 ? -1 : 2 * B->obj + (dn > 0);
+					if (fb >= 0) {
+						if (!grow((void **)&sc->ov, &sc->ovcap, 0, 2 * (B->nv + P->nv) + 8, sizeof *sc->ov))
+							goto out;
+						ov = pm_overlap_area(sc->cv + B->v0, B->nv, sc->cv + P->v0, P->nv, P->N, psi, sc->ov);
+					}
+					s = sc->fx[j] < 0 ? P->A - ov : sc->fx[j] == fb ? ov : 0;
+					A += f * dmax(0, s);
+					continue;
+				}
+				int hit = 0;
+				for (int t = P->s0; t < P->s0 + P->ndyn && nc > 0; t++)
+					hit += fate(sc, cand, nc, sc->sp[t], psi, eps) == sc->fx[j];
+				for (int t = P->s0 + P->ndyn; t < P->s0 + P->ns; t++)
+					hit += sc->sf[t] == sc->fx[j];
+				/* An unsampled polygon has no cells (ncell 0): hit is 0 there,
+				 * and 0 * (A / 0) would be NaN. */
+				s = (sc->fx[j] < 0 ? P->aopen + (nc > 0 ? 0 : P->adyn) : 0) +
+				    (hit > 0 ? hit * (P->A / P->ncell) : 0);
+				A += f * s;
+			}
 		}
-		/* The photon's own spot is exposed: never less than its cell. */
-		const cpoly *O = &sc->g[own];
-		A = dmax(A, facing(O, psi, c, nd) * O->A / (O->ncell > 0 ? O->ncell : GRID * GRID));
+		/* The photon's own spot is exposed: never less than its cell (a
+		 * photon on a simple sheet has all of the sheet). */
+		if (own >= 0) {
+			const cpoly *O = &sc->g[own];
+			A = dmax(A, facing(O, psi, c, nd) * O->A / (O->ncell > 0 ? O->ncell : GRID * GRID));
+		}
 		if (A > thr * c)
 			w[sc->act[j]] = c / A;
 		else

@@ -17,6 +17,10 @@
  *    same side, where only layers (within 60 degrees of parallel to g) and
  *    the backs of solids are looked for. A layer on g's plane facing it (a
  *    block resting on a rug) covers y for every direction.
+ *  - The facets of one smooth patch of a mesh in the cube whose sides that
+ *    count lie within 30 degrees of their mean are one sheet: they hide none
+ *    of each other from x', and a backward ray leaving the sheet does not
+ *    meet it again (exact for rays steeper than its slopes).
  * Other choices:
  *  - The cube is the smallest L-infinity cube around x holding k photons. The
  *    search may have found only some of the photons on that cube's boundary

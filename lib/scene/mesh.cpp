@@ -15,7 +15,10 @@
 #include <fstream>
 #include <new>
 #include <sstream>
+#include <algorithm>
+#include <array>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <sys/stat.h>
@@ -326,6 +329,43 @@ const char *obj_faces_problem(const char *path)
 	return bad ? "malformed OBJ face line (a corner without a vertex index, or index 0)" : nullptr;
 }
 
+// 1 if the faces close a surface when corners at one position are one
+// vertex: every edge, taken in its face's direction, is met once and its
+// reverse once. A flat-shaded export writes every face with vertices of its
+// own (a polygon soup), which OpenMesh's topology sees as all boundary.
+int closed_by_position(const std::vector<double> &verts, const std::vector<uint32_t> &start,
+                       const std::vector<uint32_t> &fv)
+{
+	size_t nv = verts.size() / 3;
+	std::vector<uint32_t> order(nv), id(nv);
+	for (size_t i = 0; i < nv; i++)
+		order[i] = (uint32_t)i;
+	auto pos = [&](uint32_t i) {
+		return std::array<double, 3>{verts[3 * i], verts[3 * i + 1], verts[3 * i + 2]};
+	};
+	std::sort(order.begin(), order.end(), [&](uint32_t a, uint32_t b) { return pos(a) < pos(b); });
+	for (size_t i = 0, k = 0; i < nv; i++) {
+		if (i > 0 && pos(order[i]) != pos(order[i - 1]))
+			k++;
+		id[order[i]] = (uint32_t)k;
+	}
+	std::vector<std::pair<uint32_t, uint32_t>> e;
+	e.reserve(fv.size());
+	for (size_t f = 0; f + 1 < start.size(); f++)
+		for (uint32_t c = start[f]; c < start[f + 1]; c++) {
+			uint32_t nx = c + 1 < start[f + 1] ? c + 1 : start[f];
+			e.emplace_back(id[fv[c]], id[fv[nx]]);
+		}
+	std::sort(e.begin(), e.end());
+	for (size_t i = 0; i < e.size(); i++) {
+		if (e[i].first == e[i].second || (i > 0 && e[i] == e[i - 1]))
+			return 0;
+		if (!std::binary_search(e.begin(), e.end(), std::make_pair(e[i].second, e[i].first)))
+			return 0;
+	}
+	return 1;
+}
+
 int fail(pm_meshdata *out, pm_error *err, const char *path, const char *why)
 {
 	pm_mesh_free(out);
@@ -425,6 +465,8 @@ int read(const char *path, pm_meshdata *out, pm_error *err)
 			closed = 0;
 			break;
 		}
+	if (!closed)
+		closed = closed_by_position(verts, start, fv);
 
 	if (opt.check(OpenMesh::IO::Options::VertexNormal)) {
 		out->normals = (double *)std::malloc(verts.size() * sizeof(double));

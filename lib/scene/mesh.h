@@ -29,9 +29,11 @@ typedef struct pm_meshdata {
 	/* Per-vertex texture coordinates (OBJ vt, PLY u v / s t /
 	 * texture_u texture_v), 2 * nverts; NULL if the file has none. */
 	double *uv;
-	/* 1 if the mesh has no boundary halfedges (OpenMesh topology): a closed
-	 * surface. Faces OpenMesh could only add as separate non-manifold
-	 * pieces leave boundaries, so such a mesh is not closed. */
+	/* 1 if the mesh is a closed surface: no boundary halfedges (OpenMesh
+	 * topology), or, corners at one position taken as one vertex (a
+	 * polygon soup), every edge met once in each direction. Faces OpenMesh
+	 * could only add as separate non-manifold pieces leave an edge met
+	 * more than once, so such a mesh is not closed. */
 	int closed;
 	/* Faces OpenMesh dropped while reading (fewer than 3 distinct vertices
 	 * or a repeated vertex; consecutive repeats are removed first). */

@@ -49,6 +49,12 @@ bits(float f)
 int
 pm_scene_patches(const pm_scene *s, uint32_t **patch, pm_error *err)
 {
+	return pm_scene_patches_at(s, s->verts, patch, err);
+}
+
+int
+pm_scene_patches_at(const pm_scene *s, const pm_vec3 *verts, uint32_t **patch, pm_error *err)
+{
 	uint32_t n = s->npolys, nc = n ? s->poly_start[n] : 0, *up;
 	corner *c;
 
@@ -63,7 +69,7 @@ pm_scene_patches(const pm_scene *s, uint32_t **patch, pm_error *err)
 	for (uint32_t i = 0; i < n; i++) {
 		up[i] = i;
 		for (uint32_t v = s->poly_start[i]; v < s->poly_start[i + 1]; v++) {
-			pm_vec3 p = s->verts[s->poly_vert[v]];
+			pm_vec3 p = verts[s->poly_vert[v]];
 			c[v] = (corner){s->poly_obj[i], {bits(p.x), bits(p.y), bits(p.z)}, i};
 		}
 	}

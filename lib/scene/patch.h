@@ -20,5 +20,7 @@
 /* *patch gets s->npolys entries: each polygon's patch, the lowest polygon
  * number in it. The caller frees it. Deterministic. */
 int pm_scene_patches(const pm_scene *s, uint32_t **patch, pm_error *err);
+/* The same with the vertices at one shutter time (pm_scene_verts_at). */
+int pm_scene_patches_at(const pm_scene *s, const pm_vec3 *verts, uint32_t **patch, pm_error *err);
 
 #endif

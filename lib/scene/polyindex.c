@@ -12,6 +12,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "scene/patch.h"
+
 #define LEAF 4
 #define STACK 72     /* > depth of a median-split tree over 2^32 entries */
 
@@ -218,6 +220,10 @@ pm_polyindex_build(pm_polyindex **out, const pm_scene *s, const pm_vec3 *verts,
 	}
 	for (int o = 0; o < s->nobjs; o++)
 		pi->convex[o] = (unsigned char)convex_solid(s, &s->objs[o], verts);
+	if (pm_scene_patches_at(s, verts, &pi->patch, err) != 0) {
+		pm_polyindex_free(pi);
+		return -1;
+	}
 	*out = pi;
 	return 0;
 }
@@ -231,6 +237,7 @@ pm_polyindex_free(pm_polyindex *pi)
 	free(pi->box);
 	free(pi->node);
 	free(pi->convex);
+	free(pi->patch);
 	free(pi);
 }
 

@@ -39,6 +39,7 @@ struct pm_polyindex {
 	uint32_t nnodes;
 	double extent;             /* largest side of all their boxes together */
 	unsigned char *convex;     /* per object: a convex solid */
+	uint32_t *patch;           /* per polygon: its smooth patch (scene/patch.h) */
 };
 
 /* Calls fn(ctx, polygon) for every photon-surface polygon whose bounding box

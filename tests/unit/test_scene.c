@@ -249,6 +249,32 @@ TEST(off_and_ply_read)
 	pm_scene_free(&s);
 }
 
+/* A polygon soup (every face with corners of its own, as flat-shaded
+ * exports write): closed once corners at one position are one vertex, so a
+ * soup cube is a solid; without one face, or with one face twice, it is not. */
+TEST(obj_soup_cube_closed_by_position)
+{
+	static const int q[6][4] = {{1, 5, 7, 3}, {2, 4, 8, 6}, {1, 2, 6, 5}, {3, 7, 8, 4}, {1, 3, 4, 2}, {5, 6, 8, 7}};
+	static const char *const corner[8] = {"0 0 0", "1 0 0", "0 1 0", "1 1 0", "0 0 1", "1 0 1", "0 1 1", "1 1 1"};
+	char text[2048];
+	for (int variant = 0; variant < 3; variant++) {
+		int n = 0, nf = variant == 1 ? 5 : 6;
+		for (int f = 0; f < nf; f++)
+			for (int c = 0; c < 4; c++)
+				n += snprintf(text + n, sizeof text - (size_t)n, "v %s\n", corner[q[f][c] - 1]);
+		for (int f = 0; f < nf; f++)
+			n += snprintf(text + n, sizeof text - (size_t)n, "f %d %d %d %d\n", 4 * f + 1, 4 * f + 2, 4 * f + 3, 4 * f + 4);
+		if (variant == 2)
+			n += snprintf(text + n, sizeof text - (size_t)n, "f 1 2 3 4\n");
+		put("soup.obj", text);
+		pm_scene s;
+		if (load(&s, "mesh soup.obj white\n"))
+			return;
+		CHECKF(s.objs[0].solid == (variant == 0), "variant %d: solid %d", variant, s.objs[0].solid);
+		pm_scene_free(&s);
+	}
+}
+
 TEST(obj_open_plane_is_sheet)
 {
 	pm_scene s;
@@ -685,6 +711,7 @@ main(void)
 	RUN(sphere_area_and_normals);
 	RUN(obj_cube_closed_quads);
 	RUN(off_and_ply_read);
+	RUN(obj_soup_cube_closed_by_position);
 	RUN(obj_open_plane_is_sheet);
 	RUN(obj_degenerate_faces_dropped);
 	RUN(concave_polygon_ear_clipping);
