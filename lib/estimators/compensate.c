@@ -1430,12 +1430,12 @@ pm_estimate_compensated(const pm_polyindex *pi, const pm_photons *map,
                         const pm_material *m, int k,
                         pm_comp_scratch *sc, pm_estimate_info *info)
 {
-	return pm_estimate_compensated_shrink(pi, map, x, n, wo, m, k, 1, sc, info);
+	return pm_estimate_compensated_shrink(pi, map, x, n, n, wo, m, k, 1, sc, info);
 }
 
 pm_vec3
 pm_estimate_compensated_shrink(const pm_polyindex *pi, const pm_photons *map,
-                               pm_vec3 x, pm_vec3 n, pm_vec3 wo,
+                               pm_vec3 x, pm_vec3 n, pm_vec3 ns, pm_vec3 wo,
                                const pm_material *m, int k, double shrink,
                                pm_comp_scratch *sc, pm_estimate_info *info)
 {
@@ -1470,8 +1470,10 @@ pm_estimate_compensated_shrink(const pm_polyindex *pi, const pm_photons *map,
 	for (int i = 0; i < got; i++) {
 		if (!(sc->w[i] > 0))
 			continue;
-		pm_vec3 f = pm_bsdf_eval(m, n, sc->dir[i], wo);
+		pm_vec3 f = pm_bsdf_eval(m, ns, sc->dir[i], wo);
 		pm_vec3 P = pm_photon_power(&map->p[sc->nn[i].idx]);
+		if (ns.x != n.x || ns.y != n.y || ns.z != n.z)
+			f = pm_scale(f, pm_shading_photon_weight(n, ns, sc->dir[i]));
 		sum[0] += sc->w[i] * P.x * f.x;
 		sum[1] += sc->w[i] * P.y * f.y;
 		sum[2] += sc->w[i] * P.z * f.z;

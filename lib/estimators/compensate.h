@@ -74,9 +74,13 @@ pm_vec3 pm_estimate_compensated(const pm_polyindex *pi, const pm_photons *map,
  * photon inside the smaller one is in the set, and given h_k the others are
  * spread over the larger cube as the surfaces' photons are: on a flat,
  * evenly lit surface the estimate is unbiased for any shrink. shrink >= 1
- * (or <= 0) is pm_estimate_compensated. */
+ * (or <= 0) is pm_estimate_compensated. ns is the shading normal on n's
+ * side (pm_shading_side): the BSDF and the cosine at x take it (each photon
+ * weighted by pm_shading_photon_weight), while the clipping, the target
+ * areas and the weights stay on the facet's n. ns equal to n: the estimate
+ * on the facets alone. */
 pm_vec3 pm_estimate_compensated_shrink(const pm_polyindex *pi, const pm_photons *map,
-                                       pm_vec3 x, pm_vec3 n, pm_vec3 wo,
+                                       pm_vec3 x, pm_vec3 n, pm_vec3 ns, pm_vec3 wo,
                                        const pm_material *m, int k, double shrink,
                                        pm_comp_scratch *sc, pm_estimate_info *info);
 

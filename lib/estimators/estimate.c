@@ -40,14 +40,14 @@ pm_estimate_classical_norm(const pm_photons *map, pm_vec3 x, pm_vec3 n, pm_vec3 
                            const pm_material *m, int k, int norm, pm_nn *nn,
                            pm_estimate_info *info)
 {
-	return pm_estimate_classical_shrink(map, x, n, wo, m, k, norm, 1, nn, info);
+	return pm_estimate_classical_shrink(map, x, n, n, wo, m, k, norm, 1, nn, info);
 }
 
 /* The shrunk disc (shrink < 1) leaves the k-th photon outside: what it holds
  * is the k-1 inner photons' share, and the (k-1) argument above makes it
  * unbiased on a flat, evenly lit surface with no normalisation factor. */
 pm_vec3
-pm_estimate_classical_shrink(const pm_photons *map, pm_vec3 x, pm_vec3 n, pm_vec3 wo,
+pm_estimate_classical_shrink(const pm_photons *map, pm_vec3 x, pm_vec3 n, pm_vec3 ns, pm_vec3 wo,
                              const pm_material *m, int k, int norm, double shrink,
                              pm_nn *nn, pm_estimate_info *info)
 {
@@ -78,7 +78,10 @@ pm_estimate_classical_shrink(const pm_photons *map, pm_vec3 x, pm_vec3 n, pm_vec
 		/* Photons arriving from behind the surface carry no light to this side. */
 		if (pm_dot(psi, n) <= 0)
 			continue;
-		sum = pm_add(sum, pm_mul(pm_bsdf_eval(m, n, psi, wo), pm_photon_power(p)));
+		pm_vec3 f = pm_bsdf_eval(m, ns, psi, wo);
+		if (ns.x != n.x || ns.y != n.y || ns.z != n.z)
+			f = pm_scale(f, pm_shading_photon_weight(n, ns, psi));
+		sum = pm_add(sum, pm_mul(f, pm_photon_power(p)));
 	}
 	return pm_scale(sum, (float)((shrink > 0 && shrink < 1 ? 1.0 : norm_factor(norm, got)) /
 	                             ((double)map->h.emitted * PM_PI * r2)));

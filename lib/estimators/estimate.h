@@ -45,9 +45,12 @@ pm_vec3 pm_estimate_classical_norm(const pm_photons *map, pm_vec3 x, pm_vec3 n,
 /* The consistent mode (pm-render --consistent): with 0 < shrink < 1 the
  * disc of the k nearest photons, radius r, shrunk to shrink * r; the photons
  * strictly inside it over pi (shrink r)^2, norm unused. shrink >= 1 (or
- * <= 0) is pm_estimate_classical_norm. */
+ * <= 0) is pm_estimate_classical_norm. ns is the shading normal on n's side
+ * (pm_shading_side): the BSDF and the cosine at x take it, each photon
+ * weighted by pm_shading_photon_weight; which photons count (in front of the
+ * facet) stays n's. ns equal to n is the estimate above. */
 pm_vec3 pm_estimate_classical_shrink(const pm_photons *map, pm_vec3 x, pm_vec3 n,
-                                     pm_vec3 wo, const pm_material *m, int k,
+                                     pm_vec3 ns, pm_vec3 wo, const pm_material *m, int k,
                                      int norm, double shrink, pm_nn *nn,
                                      pm_estimate_info *info);
 

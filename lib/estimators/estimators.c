@@ -15,10 +15,10 @@ nn_new(int k)
 }
 
 static pm_vec3
-classical(const pm_est_in *in, void *sc, pm_vec3 x, pm_vec3 n, pm_vec3 wo,
+classical(const pm_est_in *in, void *sc, pm_vec3 x, pm_vec3 n, pm_vec3 ns, pm_vec3 wo,
           const pm_material *m, pm_estimate_info *info)
 {
-	return pm_estimate_classical_shrink(in->map, x, n, wo, m, in->k, in->classical_norm,
+	return pm_estimate_classical_shrink(in->map, x, n, ns, wo, m, in->k, in->classical_norm,
 	                                    in->shrink, sc, info);
 }
 
@@ -35,10 +35,10 @@ comp_free(void *sc)
 }
 
 static pm_vec3
-compensated(const pm_est_in *in, void *sc, pm_vec3 x, pm_vec3 n, pm_vec3 wo,
+compensated(const pm_est_in *in, void *sc, pm_vec3 x, pm_vec3 n, pm_vec3 ns, pm_vec3 wo,
             const pm_material *m, pm_estimate_info *info)
 {
-	return pm_estimate_compensated_shrink(in->pi, in->map, x, n, wo, m, in->k, in->shrink,
+	return pm_estimate_compensated_shrink(in->pi, in->map, x, n, ns, wo, m, in->k, in->shrink,
 	                                      sc, info);
 }
 

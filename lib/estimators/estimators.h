@@ -37,9 +37,10 @@ typedef struct pm_estimator {
 	void *(*scratch_new)(int k);
 	void (*scratch_free)(void *sc);
 	/* The radiance estimate at a photon-surface point x (estimate.h's
-	 * arguments); NULL: the camera path goes on there, a path tracer. */
+	 * arguments: n the facet's normal, ns the shading normal, both on wo's
+	 * side); NULL: the camera path goes on there, a path tracer. */
 	pm_vec3 (*estimate)(const pm_est_in *in, void *sc, pm_vec3 x, pm_vec3 n,
-	                    pm_vec3 wo, const pm_material *m, pm_estimate_info *info);
+	                    pm_vec3 ns, pm_vec3 wo, const pm_material *m, pm_estimate_info *info);
 	/* If set, the whole image comes from this and not from camera paths:
 	 * img is initialized to zeros; no random numbers may be used. */
 	int (*image)(const pm_est_in *in, const pm_camera *cam, pm_image *img, pm_error *err);

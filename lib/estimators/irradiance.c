@@ -62,7 +62,7 @@ pm_irradiance_build(pm_irradiance *irr, const pm_estimator *est, const pm_est_in
 				continue;
 			/* Seen along the normal: the white surface reflects the same
 			 * toward every direction. */
-			L = est->estimate(in, sc, x, nrm, nrm, &white, &info);
+			L = est->estimate(in, sc, x, nrm, nrm, nrm, &white, &info);
 			pm_photon_pack(&pts[i], x, nrm, nrm, pm_vfinite(L) ? L : pm_v3(0, 0, 0));
 			ok[i] = 1;
 		}

@@ -143,6 +143,18 @@ pm_shading_side(pm_vec3 ng, pm_vec3 ns, pm_vec3 wo)
 	return n;
 }
 
+float
+pm_shading_photon_weight(pm_vec3 n, pm_vec3 ns, pm_vec3 psi)
+{
+	float cg, cs;
+
+	if (ns.x == n.x && ns.y == n.y && ns.z == n.z)
+		return 1.0f;
+	cg = fabsf(pm_dot(psi, n));
+	cs = fabsf(pm_dot(psi, ns));
+	return cs < PM_SHADING_MAX_RATIO * cg ? cs / cg : PM_SHADING_MAX_RATIO;
+}
+
 /* 1 if wi leaves on the side the sample must take: wo's for a reflection,
  * the other for a refraction, by the facet's normal. A shading normal can
  * send a sample through the facet; it is then absorbed. */

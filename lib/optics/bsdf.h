@@ -58,6 +58,15 @@ int pm_bsdf_sample_rn(const pm_material *m, pm_vec3 ng, pm_vec3 n, pm_vec3 wo, p
 #define PM_SHADING_MIN_COS 0.01f
 pm_vec3 pm_shading_side(pm_vec3 ng, pm_vec3 ns, pm_vec3 wo);
 
+/* What a photon arriving along psi (toward where it came from) counts for in
+ * a radiance estimate at a point whose facet normal is n and shading normal
+ * ns (both on the seen side): photons land per unit of facet area, |psi.n|,
+ * while the reflected radiance integrates the shading cosine |psi.ns|, so
+ * the ratio of the two, capped at PM_SHADING_MAX_RATIO near grazing facets
+ * (where its variance grows without bound; README). Exactly 1 if ns is n. */
+#define PM_SHADING_MAX_RATIO 10.0f
+float pm_shading_photon_weight(pm_vec3 n, pm_vec3 ns, pm_vec3 psi);
+
 /* Solid-angle density with which pm_bsdf_sample picks wi given wo, for
  * multiple importance sampling (0 for mirror and glass). n on wo's side. */
 float pm_bsdf_pdf(const pm_material *m, pm_vec3 n, pm_vec3 wi, pm_vec3 wo);

@@ -36,7 +36,7 @@ direct_at(const pm_gather *g, const pm_hit *y, pm_vec3 n, pm_vec3 wo, const pm_m
 	pm_vec3 sum = pm_direct_light(&dl, y->p, y->ng, n, wo, m, 1, NULL, r);
 	pm_scatter bs;
 
-	if (pm_bsdf_sample(m, y->ng, wo, r, &bs) == 0)
+	if (pm_bsdf_sample_rn(m, y->ng, n, wo, r, &bs) == 0)
 		sum = pm_add(sum, pm_direct_bsdf_light(&dl, y->p, y->ng, &bs, 1));
 	return sum;
 }
@@ -48,12 +48,13 @@ static pm_vec3
 reflected(const pm_gather *g, void *sc, pm_rng *r, const pm_hit *h, pm_vec3 n, pm_vec3 wo,
           const pm_material *m)
 {
-	pm_vec3 L = direct_at(g, h, n, wo, m, r), E;
+	pm_vec3 ns = pm_shading_side(h->ng, pm_hit_shading(g->s, h), wo);
+	pm_vec3 L = direct_at(g, h, ns, wo, m, r), E;
 	pm_estimate_info info;
 
 	if (g->o->irr && m->kind == PM_MAT_DIFFUSE && pm_irradiance_lookup(g->o->irr, h->p, n, &E))
 		return pm_add(L, pm_mul(m->kd, E));
-	return pm_add(L, g->est->estimate(&g->global, sc, h->p, n, wo, m, &info));
+	return pm_add(L, g->est->estimate(&g->global, sc, h->p, n, ns, wo, m, &info));
 }
 
 /* One gather ray leaving x along s->wi with throughput s->weight: through
@@ -107,7 +108,8 @@ gather_ray(const pm_gather *g, void *sc, pm_rng *r, pm_vec3 x, pm_vec3 ng, const
 
 pm_vec3
 pm_gather_radiance(const pm_gather *g, void *sc, pm_rng *r, pm_vec3 x, pm_vec3 ng,
-                   pm_vec3 n, pm_vec3 wo, const pm_material *m, pm_estimate_info *info)
+                   pm_vec3 n, pm_vec3 ns, pm_vec3 wo, const pm_material *m,
+                   pm_estimate_info *info)
 {
 	pm_vec3 L = pm_v3(0, 0, 0), sum = pm_v3(0, 0, 0);
 	pm_guide gd;
@@ -116,12 +118,12 @@ pm_gather_radiance(const pm_gather *g, void *sc, pm_rng *r, pm_vec3 x, pm_vec3 n
 	info->size = 0;
 	info->nphotons = 0;
 	if (g->o->caustic)
-		L = g->est->estimate(&g->caustic, sc, x, n, wo, m, info);
+		L = g->est->estimate(&g->caustic, sc, x, n, ns, wo, m, info);
 	if (g->o->guided)
-		pm_guide_build(&gd, g->global.map, x, n);
+		pm_guide_build(&gd, g->global.map, x, ns);
 	for (int i = 0; i < nr; i++) {
 		pm_scatter s;
-		if (pm_guide_mix(g->o->guided ? &gd : NULL, m, ng, n, wo, r, &s) != 0)
+		if (pm_guide_mix(g->o->guided ? &gd : NULL, m, ng, ns, wo, r, &s) != 0)
 			continue;
 		sum = pm_add(sum, gather_ray(g, sc, r, x, ng, &s));
 	}

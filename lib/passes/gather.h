@@ -47,10 +47,12 @@ void pm_gather_init(pm_gather *g, const pm_frame *f, const pm_estimator *est,
 
 /* The radiance x reflects toward wo that did not come straight from an
  * emitter: the caustic estimate plus the mean of o->rays gather rays.
- * x, ng (the unit geometric front normal), n (unit, on wo's side), m as in
- * render.c; sc is the estimator's scratch for this thread. info gets the
+ * x, ng (the unit geometric front normal), n (the facet's normal on wo's
+ * side), ns (the shading normal there, pm_shading_side: for the BSDF, the
+ * gather rays and the estimate's cosine), m as in render.c; sc is the estimator's scratch for this thread. info gets the
  * caustic estimate's size and photon count (0 without a caustic map). */
 pm_vec3 pm_gather_radiance(const pm_gather *g, void *sc, pm_rng *r, pm_vec3 x, pm_vec3 ng,
-                           pm_vec3 n, pm_vec3 wo, const pm_material *m, pm_estimate_info *info);
+                           pm_vec3 n, pm_vec3 ns, pm_vec3 wo, const pm_material *m,
+                           pm_estimate_info *info);
 
 #endif

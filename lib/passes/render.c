@@ -44,6 +44,7 @@ typedef struct ctx {
 	pm_est_in in;
 	pm_direct dl;       /* the scene, accel and lights again, for direct.h */
 	float pixel_angle;  /* a pixel's width in radians at the image centre */
+	float sample_angle; /* the spacing of its camera samples: textures' filter */
 	int light_samples;  /* o->light_samples, at least 1 */
 	pm_gather gather;   /* used if o->gather */
 	const uint32_t *patch;  /* each polygon's smooth patch (scene/patch.h) */
@@ -85,7 +86,7 @@ typedef struct pxcache {
 } pxcache;
 
 static pm_vec3
-first_estimate(const ctx *c, void *sc, const pm_hit *h, pm_vec3 n, pm_vec3 wo,
+first_estimate(const ctx *c, void *sc, const pm_hit *h, pm_vec3 n, pm_vec3 ns, pm_vec3 wo,
                const pm_material *m, pxcache *pc, pm_estimate_info *info)
 {
 	pm_vec3 L;
@@ -95,7 +96,7 @@ first_estimate(const ctx *c, void *sc, const pm_hit *h, pm_vec3 n, pm_vec3 wo,
 		*info = pc->info;
 		return pc->L;
 	}
-	L = c->est->estimate(&c->in, sc, h->p, n, wo, m, info);
+	L = c->est->estimate(&c->in, sc, h->p, n, ns, wo, m, info);
 	if (pc) {
 		if (!pc->rec) {
 			/* The footprint's area: the pixel's angle at distance t,
@@ -152,10 +153,19 @@ walk(const ctx *c, void *sc, pm_vec3 o, pm_vec3 d, int depth, pm_vec3 beta, pm_v
 			*sky = pm_add(*sky, pm_mul(beta, pm_direct_escaped(&c->dl, d, bpdf, delta, nlprev)));
 			return;
 		}
-		m = pm_hit_material(c->s, &h, &mt);
-		/* nf: the facet's normal on wo's side, for the estimate (whose
-		 * clipping and target areas are the facets'); n: the shading
-		 * normal there, for direct light and the BSDF (README). */
+		if (depth == 0) {
+			/* The camera ray's footprint filters textures (the
+			 * light pass and later bounces point-sample). */
+			pm_vec3 a1, a2;
+			pm_pixel_footprint(&h, d, c->sample_angle, &a1, &a2);
+			m = pm_hit_material_fp(c->s, &h, a1, a2, &mt);
+		} else {
+			m = pm_hit_material(c->s, &h, &mt);
+		}
+		/* nf: the facet's normal on wo's side, for the estimate's
+		 * geometry (clipping, target areas, which photons count); n: the
+		 * shading normal there, for direct light, the BSDF and the
+		 * estimate's cosine (README). */
 		nf = pm_dot(h.ng, wo) >= 0 ? h.ng : pm_neg(h.ng);
 		n = pm_shading_side(h.ng, pm_hit_shading(c->s, &h), wo);
 		if (depth == 0)
@@ -188,8 +198,8 @@ walk(const ctx *c, void *sc, pm_vec3 o, pm_vec3 d, int depth, pm_vec3 beta, pm_v
 			/* The BSDF-sampled half of the direct light. */
 			*here = pm_add(*here, pm_mul(beta, pm_direct_bsdf_light(&c->dl, h.p, h.ng, &bs, nl)));
 			/* Gathering draws its own rays: one gather per camera sample. */
-			L = c->o->gather ? pm_gather_radiance(&c->gather, sc, r, h.p, h.ng, nf, wo, m, &info)
-			                 : first_estimate(c, sc, &h, nf, wo, m,
+			L = c->o->gather ? pm_gather_radiance(&c->gather, sc, r, h.p, h.ng, nf, n, wo, m, &info)
+			                 : first_estimate(c, sc, &h, nf, n, wo, m,
 			                                  depth == 0 && c->o->estimate_once ? pc : NULL, &info);
 			*bucket = pm_add(*bucket, pm_mul(beta, L));
 			if (depth == 0) {
@@ -243,7 +253,7 @@ pm_render(const pm_frame *f, const pm_photons *map, const pm_render_opts *o,
 	const pm_estimator *est = o->estimator;
 	ctx c = {s, f->accel, &f->lights, o, est,
 	         {s, f->accel, map, f->pi, o->k, o->classical_norm, o->shrink},
-	         {s, f->accel, &f->lights}, 0.0f,
+	         {s, f->accel, &f->lights}, 0.0f, 0.0f,
 	         o->light_samples > 1 ? o->light_samples : 1, {0}, NULL};
 	pm_camera cam;
 	int W, H, fail = 0;
@@ -262,6 +272,11 @@ pm_render(const pm_frame *f, const pm_photons *map, const pm_render_opts *o,
 	if (pm_camera_init(&cam, &s->camera, err) != 0)
 		return pm_preferr(err, "%s", s->path);
 	c.pixel_angle = 2.0f * cam.tan_half / (float)cam.height;
+	/* The pixel's samples already average its area: a texture needs
+	 * filtering over their spacing only, a pixel over sqrt(spp), no finer
+	 * than an eighth of a pixel (pbrt-v4's scale of its ray differentials,
+	 * so that the two agree where squares meet a pixel's edge). */
+	c.sample_angle = c.pixel_angle * fmaxf(0.125f, 1.0f / sqrtf((float)(o->spp > 0 ? o->spp : 1)));
 	W = cam.width;
 	H = cam.height;
 	npx = (size_t)W * H;

@@ -7,6 +7,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "scene/texfilter.h"
+
 struct pm_accel {
 	RTCDevice dev;
 	RTCScene scn;
@@ -230,17 +232,120 @@ pm_texture_at(const pm_texture *t, float u, float v)
 	return pm_v3(r[0], r[1], r[2]);
 }
 
+/* The integral of [floor(x) is odd] from 0 to x. */
+static double
+odd_integral(double x)
+{
+	double f = floor(x / 2);
+	return f + fmax(x - 2 * f - 1, 0.0);
+}
+
+/* The share of [x - r, x + r] on which floor is odd. */
+static double
+odd_share(double x, double r)
+{
+	if (!(r > 1e-6))
+		return fmod(fabs(floor(x)), 2.0);
+	return (odd_integral(x + r) - odd_integral(x - r)) / (2 * r);
+}
+
+pm_vec3
+pm_texture_filtered(const pm_texture *t, float u, float v, float du1, float dv1, float du2,
+                    float dv2)
+{
+	float wu = (fabsf(du1) + fabsf(du2)) * fabsf(t->su), wv = (fabsf(dv1) + fabsf(dv2)) * fabsf(t->sv);
+	float us = u * t->su + t->ou, vs = v * t->sv + t->ov;
+
+	if (!(wu < 1e6f && wv < 1e6f) || !(fabsf(us) < 1e7f && fabsf(vs) < 1e7f))
+		return pm_texture_at(t, u, v);
+	if (t->kind == PM_TEX_CHECKER) {
+		if (!(wu > 0 || wv > 0))
+			return pm_texture_at(t, u, v);
+		/* The footprint's bounding box, half-widths half its extent:
+		 * floor(u) and floor(v) are independent across it, and the
+		 * squares of c2 are where exactly one of them is odd. */
+		double pu = odd_share(us, 0.5 * wu), pv = odd_share(vs, 0.5 * wv);
+		float q = (float)(pu * (1 - pv) + pv * (1 - pu));
+		return pm_add(pm_scale(t->c1, 1 - q), pm_scale(t->c2, q));
+	}
+	if (!t->filt || !(fmaxf(wu * (float)t->w, wv * (float)t->h) > 1))
+		return pm_texture_at(t, u, v);
+	float rgb[3];
+	if (pm_texfilter_lookup(t->filt, us, 1.0f - vs, du1 * t->su, -dv1 * t->sv, du2 * t->su,
+	                        -dv2 * t->sv, rgb) != 0)
+		return pm_texture_at(t, u, v);
+	return pm_v3(rgb[0], rgb[1], rgb[2]);
+}
+
+void
+pm_pixel_footprint(const pm_hit *h, pm_vec3 d, float pixel_angle, pm_vec3 *a1, pm_vec3 *a2)
+{
+	float w = h->t * pixel_angle, c = pm_dot(d, h->ng);
+	pm_vec3 e1 = pm_sub(h->ng, pm_scale(d, c)), e2;
+
+	if (!(w > 0) || !(pm_len(e1) > 1e-6f)) {
+		/* Head on (or no width): a square of side w in the facet. */
+		pm_vec3 x = fabsf(h->ng.x) < 0.9f ? pm_v3(1, 0, 0) : pm_v3(0, 1, 0);
+		e1 = pm_norm(pm_cross(h->ng, x));
+		*a1 = pm_scale(e1, w > 0 ? w : 0);
+		*a2 = pm_scale(pm_cross(h->ng, e1), w > 0 ? w : 0);
+		return;
+	}
+	/* e1: across the pixel toward the facet's tilt, slanted onto the
+	 * facet along d; e2: across it the other way, in the facet already. */
+	e1 = pm_norm(e1);
+	e2 = pm_norm(pm_cross(d, e1));
+	c = fabsf(c) > 0.02f ? c : c < 0 ? -0.02f : 0.02f;
+	*a1 = pm_scale(pm_sub(e1, pm_scale(d, pm_dot(e1, h->ng) / c)), w);
+	*a2 = pm_scale(e2, w);
+}
+
 static pm_vec3
 clamp01(pm_vec3 a)
 {
 	return pm_v3(fminf(fmaxf(a.x, 0.0f), 1.0f), fminf(fmaxf(a.y, 0.0f), 1.0f), fminf(fmaxf(a.z, 0.0f), 1.0f));
 }
 
+/* How (u, v) changes along the world-space vectors a1 and a2 on h's
+ * triangle: its uv's gradients in the triangle's plane, dotted with them. */
+static void
+uv_along(const pm_scene *s, const pm_hit *h, pm_vec3 a1, pm_vec3 a2, float duv[4])
+{
+	const uint32_t *t = s->tris[h->tri];
+	pm_vec3 e1 = pm_sub(s->verts[t[1]], s->verts[t[0]]), e2 = pm_sub(s->verts[t[2]], s->verts[t[0]]);
+	double a = pm_dot(e1, e1), b = pm_dot(e1, e2), c = pm_dot(e2, e2), det = a * c - b * b;
+	double p1 = pm_dot(e1, a1), q1 = pm_dot(e2, a1), p2 = pm_dot(e1, a2), q2 = pm_dot(e2, a2);
+
+	for (int k = 0; k < 2; k++) {
+		double d1 = s->vuv[t[1]][k] - s->vuv[t[0]][k], d2 = s->vuv[t[2]][k] - s->vuv[t[0]][k];
+		double al = (c * d1 - b * d2) / det, be = (a * d2 - b * d1) / det;
+		duv[k] = (float)(al * p1 + be * q1);
+		duv[2 + k] = (float)(al * p2 + be * q2);
+	}
+	for (int k = 0; k < 4; k++)
+		if (!(fabsf(duv[k]) < 1e30f))
+			duv[0] = duv[1] = duv[2] = duv[3] = 0;
+}
+
+static pm_vec3
+lookup(const pm_texture *t, float u, float v, const float *duv)
+{
+	return duv ? pm_texture_filtered(t, u, v, duv[0], duv[1], duv[2], duv[3])
+	           : pm_texture_at(t, u, v);
+}
+
 const pm_material *
 pm_hit_material(const pm_scene *s, const pm_hit *h, pm_material *tmp)
 {
+	return pm_hit_material_fp(s, h, pm_v3(0, 0, 0), pm_v3(0, 0, 0), tmp);
+}
+
+const pm_material *
+pm_hit_material_fp(const pm_scene *s, const pm_hit *h, pm_vec3 a1, pm_vec3 a2, pm_material *tmp)
+{
 	const pm_material *m = &s->mats[s->objs[h->obj].material];
-	float u = 0, v = 0;
+	float u = 0, v = 0, duv[4];
+	const float *fp = NULL;
 
 	if (!(m->tkd | m->tks | m->texp))
 		return m;
@@ -249,14 +354,18 @@ pm_hit_material(const pm_scene *s, const pm_hit *h, pm_material *tmp)
 		float w0 = 1.0f - h->u - h->v;
 		u = w0 * s->vuv[t[0]][0] + h->u * s->vuv[t[1]][0] + h->v * s->vuv[t[2]][0];
 		v = w0 * s->vuv[t[0]][1] + h->u * s->vuv[t[1]][1] + h->v * s->vuv[t[2]][1];
+		if (pm_len(a1) > 0 || pm_len(a2) > 0) {
+			uv_along(s, h, a1, a2, duv);
+			fp = duv;
+		}
 	}
 	*tmp = *m;
 	if (m->tkd)
-		tmp->kd = clamp01(pm_texture_at(&s->texs[m->tkd - 1], u, v));
+		tmp->kd = clamp01(lookup(&s->texs[m->tkd - 1], u, v, fp));
 	if (m->tks)
-		tmp->ks = clamp01(pm_texture_at(&s->texs[m->tks - 1], u, v));
+		tmp->ks = clamp01(lookup(&s->texs[m->tks - 1], u, v, fp));
 	if (m->texp)
-		tmp->exponent = fmaxf(pm_lum(pm_texture_at(&s->texs[m->texp - 1], u, v)), 1e-3f);
+		tmp->exponent = fmaxf(pm_lum(lookup(&s->texs[m->texp - 1], u, v, fp)), 1e-3f);
 	if (m->kind == PM_MAT_GLOSSY) {
 		float sc[3] = {tmp->kd.x + tmp->ks.x, tmp->kd.y + tmp->ks.y, tmp->kd.z + tmp->ks.z};
 		float f[3];

@@ -34,9 +34,31 @@ pm_vec3 pm_hit_shading(const pm_scene *s, const pm_hit *h);
  * channel scaled down to 1, so no texel makes energy. */
 const pm_material *pm_hit_material(const pm_scene *s, const pm_hit *h, pm_material *tmp);
 
+/* pm_hit_material with each texture averaged over the footprint whose
+ * axes a1, a2 (world space, in the facet's plane) are centred at h: a
+ * camera pixel's where a camera ray first meets a surface
+ * (pm_pixel_footprint), so a distant texture reads its mean there and
+ * does not alias. a1 = a2 = 0 is pm_hit_material. */
+const pm_material *pm_hit_material_fp(const pm_scene *s, const pm_hit *h, pm_vec3 a1, pm_vec3 a2,
+                                      pm_material *tmp);
+
+/* The footprint's axes, on h's facet, of a camera sample that spans the
+ * angle pixel_angle seen along the ray direction d: across, pixel_angle * h->t;
+ * along d's slant, that over the cosine to the facet (the cosine taken no
+ * smaller than 0.02). */
+void pm_pixel_footprint(const pm_hit *h, pm_vec3 d, float pixel_angle, pm_vec3 *a1, pm_vec3 *a2);
+
 /* A texture's value at (u, v) (formats/scene.md): bilinear between texels
  * of an image repeated in u and v, v = 0 its bottom row. */
 pm_vec3 pm_texture_at(const pm_texture *t, float u, float v);
+
+/* Its mean over the footprint centred at (u, v) with axes (du1, dv1) and
+ * (du2, dv2) in (u, v) (before the texture's scale): a checker's exact
+ * mean over the footprint's bounding box; an image's from OpenImageIO's
+ * MIP levels (texfilter.h) where the footprint spans more than a texel,
+ * else pm_texture_at. */
+pm_vec3 pm_texture_filtered(const pm_texture *t, float u, float v, float du1, float dv1,
+                            float du2, float dv2);
 
 /* verts: positions at the pass's time (pm_scene_verts_at); copied. */
 int pm_accel_build(pm_accel **out, const pm_scene *s, const pm_vec3 *verts, pm_error *err);

@@ -20,6 +20,7 @@
 #include "scene/scene_build.h"
 #include "scene/scene_id.h"
 #include "scene/scene_limits.h"
+#include "scene/texfilter.h"
 
 /* Bounds on what a scene may ask for; see formats/scene.md. */
 #define MAX_FILE (64u << 20)        /* scene file bytes */
@@ -824,9 +825,14 @@ st_texture(parser *p)
 		t.w = im.w;
 		t.h = im.h;
 		t.px = im.px;
+		if (!(t.filt = pm_texfilter_new(t.w, t.h, t.px))) {
+			free(t.px);
+			return perr(p, "texture '%s': OpenImageIO's TextureSystem refused it", name);
+		}
 	}
 	pm_error e;
 	if (pm_build_texture(p->b, &t, &e)) {
+		pm_texfilter_free(t.filt);
 		free(t.px);
 		return berr(p, &e);
 	}
@@ -1232,8 +1238,10 @@ pm_scene_free(pm_scene *s)
 	free(s->verts);
 	free(s->vnormal);
 	free(s->vuv);
-	for (int i = 0; i < s->ntexs; i++)
+	for (int i = 0; i < s->ntexs; i++) {
+		pm_texfilter_free(s->texs[i].filt);
 		free(s->texs[i].px);
+	}
 	free(s->texs);
 	free(s->poly_start);
 	free(s->poly_vert);

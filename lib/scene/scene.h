@@ -43,6 +43,7 @@ typedef struct pm_texture {
 	float *px;
 	pm_vec3 c1, c2;     /* checker: the colours of even and odd squares */
 	float su, sv, ou, ov;  /* (u, v) -> (u su + ou, v sv + ov) first */
+	struct pm_texfilter *filt;  /* image: its filtered lookups (texfilter.h) */
 } pm_texture;
 
 typedef struct pm_object {

@@ -105,3 +105,43 @@ sed 's/^texture .*/texture img image junk.png/; s/tex chk/tex img/' chk.pms >bad
 expect_fail "unreadable texture" 1 "^pm-render: bad.pms:2: 'junk.png': cannot read image" pm-render -e path bad.pms -o bad.exr
 sed 's/tex chk/tex nope/' chk.pms >bad.pms
 expect_fail "unknown texture" 1 "^pm-render: bad.pms:3: material 'floor': unknown texture 'nope'" pm-render -e path bad.pms -o bad.exr
+
+# Filtered lookups: a floor checkered in squares of half a unit to the
+# horizon, lit so that it reads its albedo (E = pi from straight above).
+# Where a camera sample's footprint (half a pixel at 4 samples) spans many
+# squares (the first floor rows under the horizon) each pixel reads the
+# squares' mean, 0.5, whichever points its samples land on: measured rms
+# 0.0105 (checker, exact box mean) and 0.0075 (a 2 x 2 image of texels 1
+# and 0, OpenImageIO's MIP levels), where point sampling read 0.145 and
+# 0.080 at these 4 samples a pixel. Near the camera, where a texel spans
+# pixels, the image is looked up as before (its last rows' spread, 0.188,
+# is what point sampling gave) and the checker's squares stay sharp
+# (0.284; 0.294 point-sampled).
+printf 'P2\n2 2\n255\n255 0\n0 255\n' >ck.pgm
+for k in checker image; do
+	if [ $k = checker ]; then tx="texture ck checker 0.8 0.8 0.8  0.2 0.2 0.2 scale 400 400"
+	else tx="texture ck image ck.pgm scale 200 200"; fi
+	cat >far$k.pms <<SCENE
+camera eye 0 1 0  look 0 0.7 -10  up 0 1 0  fov 40  size 64 48
+$tx
+material fl diffuse albedo tex ck
+quad fl -100 0 100  100 0 100  100 0 -100  -100 0 -100
+distantlight dir 0 -1 0  irradiance 3.14159265 3.14159265 3.14159265
+SCENE
+	pm-render -q -e path -p 4 -j 2 far$k.pms -o far$k.exr
+	pm-render -q -e path -p 4 -j 1 far$k.pms -o far${k}1.exr
+	"$tools/exrstat" --dump far$k.exr >far$k.dump
+	"$tools/exrstat" --dump far${k}1.exr >far${k}1.dump
+	check "far $k: -j 1 and -j 2 alike" cmp -s far$k.dump far${k}1.dump
+	# The mean and rms about 0.5 of the first six rows all floor (the
+	# sky reads 0), and the spread of the last three.
+	awk '{ s[$2] += $3; q[$2] += ($3 - 0.5) ^ 2; n[$2]++; if (!($3 > 0)) sky[$2] = 1; if ($2 + 0 > Y) Y = $2 + 0 }
+	END { for (y = 0; y <= Y && f < 6; y++) if (!(y in sky)) { f++; m += s[y]; e += q[y]; c += n[y] }
+	      for (y = Y - 2; y <= Y; y++) { a += s[y]; b += q[y]; k += n[y] }
+	      printf "far_mean: %.6f\nfar_rms: %.6f\nnear_sd: %.6f\n", m / c, sqrt(e / c), sqrt(b / k - (a / k - 0.5) ^ 2) }' far$k.dump >far$k.txt
+	num_near "far $k: the far rows read the squares' mean" "$(kv far$k.txt far_mean)" 0.5 0.01
+	check "far $k: every far pixel within rms 0.02 of it ($(kv far$k.txt far_rms))" \
+		awk -v a="$(kv far$k.txt far_rms)" 'BEGIN { exit !(a < 0.02) }'
+	check "far $k: the near rows stay sharp ($(kv far$k.txt near_sd))" \
+		awk -v a="$(kv far$k.txt near_sd)" 'BEGIN { exit !(a > 0.15) }'
+done
