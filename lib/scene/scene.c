@@ -601,56 +601,63 @@ material_arg(parser *p, int *mat)
 	return 0;
 }
 
+/* The corners of a quad (n = 4) or a triangle (n = 3) after the material,
+ * and the statement's tail, into *mat, c and *t; -1 with the error said. */
 static int
-st_quad(parser *p)
+flat_args(parser *p, int n, int *mat, double *c, tail *t)
 {
-	int mat;
-	double c[12];
-	tail t = {.inward = -1, .subdiv = -1};
-	if (material_arg(p, &mat) || numbers(p, 12, c, "the material"))
+	*t = (tail){.inward = -1, .subdiv = -1};
+	if (material_arg(p, mat) || numbers(p, 3 * n, c, "the material"))
 		return -1;
-	if (parse_tail(p, &t))
-		return -1;
-	int why = pm_shape_quad_check(c);
-	if (why)
-		return perr(p, "quad: %s", pm_shape_quad_problem(why));
+	return parse_tail(p, t);
+}
+
+/* A flat polygon of n corners c, each with its uv from uv, as an object. */
+static int
+add_flat(parser *p, int mat, const double *c, int n, const double *uv, const tail *t)
+{
 	pm_shape sh;
-	static const double quv[8] = {0, 0, 1, 0, 1, 1, 0, 1};
-	if (pm_shape_polygon(&sh, c, 4) || !(sh.uv = malloc(sizeof quv))) {
+	size_t sz = 2 * (size_t)n * sizeof *uv;
+	if (pm_shape_polygon(&sh, c, n) || !(sh.uv = malloc(sz))) {
 		pm_shape_free(&sh);
 		return perr(p, "out of memory");
 	}
-	memcpy(sh.uv, quv, sizeof quv);
-	int r = add_object(p, mat, &sh, &t, 0, 0);
+	memcpy(sh.uv, uv, sz);
+	int r = add_object(p, mat, &sh, t, 0, 0);
 	pm_shape_free(&sh);
 	return r;
 }
 
 static int
+st_quad(parser *p)
+{
+	static const double quv[8] = {0, 0, 1, 0, 1, 1, 0, 1};
+	int mat;
+	double c[12];
+	tail t;
+	if (flat_args(p, 4, &mat, c, &t))
+		return -1;
+	int why = pm_shape_quad_check(c);
+	if (why)
+		return perr(p, "quad: %s", pm_shape_quad_problem(why));
+	return add_flat(p, mat, c, 4, quv, &t);
+}
+
+static int
 st_triangle(parser *p)
 {
+	static const double tuv[6] = {0, 0, 1, 0, 0, 1};
 	int mat;
 	double c[9];
-	tail t = {.inward = -1, .subdiv = -1};
-	if (material_arg(p, &mat) || numbers(p, 9, c, "the material"))
-		return -1;
-	if (parse_tail(p, &t))
+	tail t;
+	if (flat_args(p, 3, &mat, c, &t))
 		return -1;
 	pm_dvec3 a = pm_dv3(c[0], c[1], c[2]);
 	pm_dvec3 e1 = pm_dsub(pm_dv3(c[3], c[4], c[5]), a), e2 = pm_dsub(pm_dv3(c[6], c[7], c[8]), a);
 	double size = fmax(pm_dlen(e1), pm_dlen(e2));
 	if (!(pm_dlen(pm_dcross(e1, e2)) > 1e-9 * size * size))
 		return perr(p, "triangle: zero area (corners coincide or lie on a line)");
-	pm_shape sh;
-	static const double tuv[6] = {0, 0, 1, 0, 0, 1};
-	if (pm_shape_polygon(&sh, c, 3) || !(sh.uv = malloc(sizeof tuv))) {
-		pm_shape_free(&sh);
-		return perr(p, "out of memory");
-	}
-	memcpy(sh.uv, tuv, sizeof tuv);
-	int r = add_object(p, mat, &sh, &t, 0, 0);
-	pm_shape_free(&sh);
-	return r;
+	return add_flat(p, mat, c, 3, tuv, &t);
 }
 
 static int

@@ -24,16 +24,8 @@
 #include <string.h>
 #include <sys/stat.h>
 
-static uint64_t rng_state;
-static uint64_t
-next64(void)
-{
-	uint64_t z = (rng_state += 0x9e3779b97f4a7c15ull);
-	z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
-	z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
-	return z ^ (z >> 31);
-}
-static double unif(void) { return (double)(next64() >> 11) * 0x1.0p-53; }
+#include "tools/splitmix.h"
+
 static int chance(double p) { return unif() < p; }
 static int pick(int n) { return (int)(unif() * n); }
 #define PICK(a) (a[pick((int)(sizeof a / sizeof a[0]))])

@@ -40,19 +40,11 @@
 #include <string.h>
 #include <sys/stat.h>
 
+#include "tools/splitmix.h"
+
 #define PI 3.14159265358979323846
 
-/* ---- random numbers: splitmix64 ---- */
-static uint64_t rng_state;
-static uint64_t
-next64(void)
-{
-	uint64_t z = (rng_state += 0x9e3779b97f4a7c15ull);
-	z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
-	z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
-	return z ^ (z >> 31);
-}
-static double unif(void) { return (double)(next64() >> 11) * 0x1.0p-53; }
+/* ---- random numbers: splitmix64 (tools/splitmix.h) ---- */
 /* How an item is written (not where it is) draws from a stream of its own,
  * so that adding such a choice leaves every scene's geometry as it was. */
 static uint64_t form_state;
