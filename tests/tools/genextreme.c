@@ -24,7 +24,7 @@
 #include <string.h>
 #include <sys/stat.h>
 
-#include "tools/splitmix.h"
+#include "splitmix.h"
 
 static int chance(double p) { return unif() < p; }
 static int pick(int n) { return (int)(unif() * n); }

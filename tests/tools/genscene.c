@@ -40,11 +40,11 @@
 #include <string.h>
 #include <sys/stat.h>
 
-#include "tools/splitmix.h"
+#include "splitmix.h"
 
 #define PI 3.14159265358979323846
 
-/* ---- random numbers: splitmix64 (tools/splitmix.h) ---- */
+/* ---- random numbers: splitmix64 (splitmix.h) ---- */
 /* How an item is written (not where it is) draws from a stream of its own,
  * so that adding such a choice leaves every scene's geometry as it was. */
 static uint64_t form_state;
