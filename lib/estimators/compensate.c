@@ -7,8 +7,10 @@
  * Cost: one k-nearest search; one pass over the polygons that meet the cube
  * (typically 1-3), clipping each once; the polygons grouped into sheets
  * (groups()); pairwise tests between polygons of different groups to find
- * which can hide which, a group whose box is out of reach passed over whole
- * (on a rough mesh, many groups, the pairs are the cost: bench/compcost.sh).
+ * which can hide which, a group whose box is out of reach passed over whole,
+ * and in a cube of many polygons only pairs that x' sees in one direction
+ * (sight.h) tested (on a rough mesh, many groups, the pairs are the cost:
+ * bench/compcost.sh).
  * Only polygons that something can hide get sample points, and only their
  * samples cost work per photon; a photon on a sheet nothing touches costs a
  * slab test and a dot product. All geometry is double and relative to x. */
@@ -22,6 +24,7 @@
 #include "optics/bsdf.h"
 #include "estimators/clip.h"
 #include "estimators/overlap.h"
+#include "estimators/sight.h"
 
 /* A polygon whose unit normal is this close to +-n is taken as lying in the
  * plane of x (1 - cos of about 1.4 milliradians). */
@@ -60,6 +63,10 @@
 #define FATE_MAX_GROUPS 96
 /* ... a polygon wholly in front of it. */
 #define FRONT (1 << 29)
+/* From this many polygons in the cube, the candidates that may hide one
+ * from x' come from a grid of where x' sees them (sight.h); below, from
+ * every pair. Both apply the same test. */
+#define SIGHT_MIN 32
 #define IDX(e) ((e) & (FRONT - 1))
 
 typedef struct cpoly {
@@ -90,6 +97,7 @@ typedef struct cpoly {
 	int ndyn;              /* samples whose fate depends on the direction */
 	double adyn;           /* ... their area seen from x' */
 	int grp;               /* its group (cgroup) */
+	pm_sight sight;        /* its directions from x' (sight.h) */
 } cpoly;
 
 /* The cube's polygons in groups: a sheet (see SHEET_COS), or one polygon.
@@ -157,8 +165,16 @@ struct pm_comp_scratch {
 	int htcap;
 	int *gm;               /* groups that may hold one photon */
 	int gmcap;
-	int *mark;             /* per polygon: on the list being closed if stamp */
+	int *mark;             /* per polygon: on the list being closed, or found
+	                          in the sight grid, if stamp */
 	int markcap, marked, stamp;
+	pm_sight_grid grid;
+	int *cand;             /* polygons the grid gave for one P */
+	int candcap;
+	pm_sight *sg;          /* every polygon's sight, for the grid */
+	int sgcap;
+	int *gmk, *gskip;      /* per group: gskip holds its test for P if gmk is stamp */
+	int gmkcap;
 	int oom;
 	pm_comp_stats last;
 };
@@ -224,6 +240,11 @@ pm_comp_scratch_free(pm_comp_scratch *sc)
 	free(sc->ht);
 	free(sc->gm);
 	free(sc->mark);
+	pm_sight_grid_free(&sc->grid);
+	free(sc->cand);
+	free(sc->gmk);
+	free(sc->gskip);
+	free(sc->sg);
 	free(sc);
 }
 
@@ -650,7 +671,7 @@ groups(pm_comp_scratch *sc, const uint32_t *patch, pm_dvec3 n)
 	for (int i = sc->marked; i < sc->markcap; i++)
 		sc->mark[i] = 0;
 	sc->marked = sc->markcap;
-	if (sc->stamp > INT_MAX - ng - 2) {
+	if (sc->stamp > INT_MAX - 2 * ng - 4) {
 		for (int i = 0; i < sc->markcap; i++)
 			sc->mark[i] = 0;
 		sc->stamp = 0;
@@ -828,6 +849,49 @@ group_behind(const cgroup *G, pm_dvec3 M, double m, double eps)
 	return hi < -eps;
 }
 
+/* 1 if no polygon of group G can hide part of P from x' (pair_lists): P's
+ * own sheet, one convex solid's faces (they never hide each other), or a
+ * sheet out of reach. */
+static int
+skip_group(const pm_comp_scratch *sc, const unsigned char *cvx, const cpoly *P, int G, int sgrp,
+           pm_dvec3 xo, double eps)
+{
+	const cgroup *Gr = &sc->gr[G];
+
+	if (G == sgrp || (cvx[P->obj] && sc->g[sc->gp[Gr->p0]].obj == P->obj))
+		return 1;
+	return Gr->np > 1 && group_not_between(sc, P, Gr, xo, eps);
+}
+
+/* 1 if polygon b (B) may hide part of polygon a (P) from x': some ray
+ * from x' meets both (sight.h), B's plane between x' and part of P, and B
+ * within P's pyramid from x' (between()). plsx holds each plane's
+ * N . x' - d; own says x lies on P's solid. */
+static int
+may_hide(const pm_comp_scratch *sc, const cpoly *P, int a, int b, const double *plsx, pm_dvec3 xo,
+         double eps, int own)
+{
+	const cpoly *B = &sc->g[b];
+	double sx = plsx[b], lo, hi, t, u;
+
+	if (fabs(sx) <= eps || b == a || !pm_sight_meet(&P->sight, &B->sight))
+		return 0;
+	/* P's sphere wholly on the side of B's plane where x' is: P cannot
+	 * cross it (span() would say the same). */
+	t = pm_ddot(B->N, P->c) - B->d;
+	if (fabs(t) > P->rad && (sx > 0 ? t - P->rad >= -eps : t + P->rad <= eps))
+		return 0;
+	/* x sees its own solid's nearly flat neighbours through it. */
+	if (B->xon && B->solid && B->obj == P->obj && own)
+		return 0;
+	if (fabs(t) > P->rad)
+		lo = t - P->rad, hi = t + P->rad;
+	else
+		span_verts(sc, P, B->N, B->d, &lo, &hi);
+	u = pm_ddot(P->N, B->c) - P->d;
+	return (sx > 0 ? lo < -eps : hi > eps) && between(sc, P, B, xo, eps, u);
+}
+
 /* For each polygon: which others may hide part of it from x' (R list), and
  * which a backward ray from it may meet so that its fate differs from the
  * open one (F list): layers over it (|N_b . N| >= LAYER_COS) with some part
@@ -839,12 +903,26 @@ static int
 pair_lists(pm_comp_scratch *sc, const unsigned char *cvx, pm_dvec3 xo, pm_dvec3 n, double eps,
            int *xf0, int *nxf)
 {
-	int ng = sc->ng, ngr = sc->ngr, follow = ngr <= FATE_MAX_GROUPS;
+	int ng = sc->ng, ngr = sc->ngr, follow = ngr <= FATE_MAX_GROUPS, grid = ng >= SIGHT_MIN;
 
 	sc->nbl = 0;
 	if (!grow((void **)&sc->span, &sc->spancap, 0, 2 * ng, sizeof *sc->span) ||
 	    !grow((void **)&sc->pl, &sc->plcap, 0, ng, sizeof *sc->pl))
 		return 0;
+	if (grid) {
+		int gcap = sc->gmkcap;
+		if (!grow((void **)&sc->cand, &sc->candcap, 0, ng, sizeof *sc->cand) ||
+		    !grow((void **)&sc->sg, &sc->sgcap, 0, ng, sizeof *sc->sg) ||
+		    !grow((void **)&sc->gmk, &sc->gmkcap, 0, ngr, sizeof *sc->gmk) ||
+		    !grow((void **)&sc->gskip, &gcap, 0, ngr, sizeof *sc->gskip))
+			return 0;
+		for (int G = 0; G < ngr; G++)
+			sc->gmk[G] = 0;
+		for (int b = 0; b < ng; b++)
+			sc->sg[b] = sc->g[b].sight;
+		if (!pm_sight_grid_build(&sc->grid, sc->sg, ng))
+			return 0;
+	}
 	int xobj[4], nxobj = 0;
 
 	for (int b = 0; b < ng; b++)
@@ -866,39 +944,32 @@ pair_lists(pm_comp_scratch *sc, const unsigned char *cvx, pm_dvec3 xo, pm_dvec3 
 		P->unseen = P->solid && !own && pm_ddot(P->N, xo) - P->d < -eps;
 		if (!P->unseen && P->lit && !pyramid(sc, P, xo, eps))
 			return 0;
-		for (int G = 0; G < ngr && !P->unseen && P->lit; G++) {
-			const cgroup *Gr = &sc->gr[G];
-			/* One convex solid's faces never hide each other. */
-			if (G == sgrp || (cvx[P->obj] && sc->g[sc->gp[Gr->p0]].obj == P->obj))
-				continue;
-			if (Gr->np > 1 && group_not_between(sc, P, Gr, xo, eps))
-				continue;
-			for (int gi = Gr->p0; gi < Gr->p0 + Gr->np; gi++) {
-				int b = sc->gp[gi];
-				const cpoly *B = &sc->g[b];
-				double sx = plsx[b], lo, hi, t, u;
-				if (fabs(sx) <= eps || b == a)
+		if (P->unseen || !P->lit)
+			;
+		else if (!grid || P->sight.face < 0) {
+			for (int G = 0; G < ngr; G++) {
+				const cgroup *Gr = &sc->gr[G];
+				if (skip_group(sc, cvx, P, G, sgrp, xo, eps))
 					continue;
-				/* P's sphere wholly on the side of B's plane where x'
-				 * is: P cannot cross it (span() would say the same). */
-				t = pm_ddot(B->N, P->c) - B->d;
-				if (fabs(t) > P->rad && (sx > 0 ? t - P->rad >= -eps : t + P->rad <= eps))
-					continue;
-				/* x sees its own solid's nearly flat neighbours through it. */
-				if (B->xon && B->solid && B->obj == P->obj && own)
-					continue;
-				if (fabs(t) > P->rad)
-					lo = t - P->rad, hi = t + P->rad;
-				else
-					span_verts(sc, P, B->N, B->d, &lo, &hi);
-				u = pm_ddot(P->N, B->c) - P->d;
-				if ((sx > 0 ? lo < -eps : hi > eps) && between(sc, P, B, xo, eps, u))
+				for (int gi = Gr->p0; gi < Gr->p0 + Gr->np; gi++)
+					if (may_hide(sc, P, a, sc->gp[gi], plsx, xo, eps, own))
+						push(sc, sc->gp[gi]);
+			}
+		} else {
+			int st = ++sc->stamp, nc = pm_sight_grid_query(&sc->grid, ng, &P->sight, sc->cand, sc->mark, st);
+			for (int k = 0; k < nc; k++) {
+				int b = sc->cand[k], G = sc->g[b].grp;
+				if (sc->gmk[G] != st) {
+					sc->gmk[G] = st;
+					sc->gskip[G] = skip_group(sc, cvx, P, G, sgrp, xo, eps);
+				}
+				if (!sc->gskip[G] && may_hide(sc, P, a, b, plsx, xo, eps, own))
 					push(sc, b);
 			}
 		}
 		P->nr = sc->nbl - P->r0;
 		P->f0 = sc->nbl;
-		for (int pass = 0; pass < 2 && P->lit && follow; pass++) {
+		for (int pass = 0; pass < 2 && P->lit && !P->unseen && follow; pass++) {
 			for (int G = 0; G < ngr; G++) {
 				const cgroup *Gr = &sc->gr[G];
 				if (G == sgrp || (Gr->np > 1 && group_behind(Gr, P->Ne, P->de, eps)))
@@ -941,7 +1012,7 @@ pair_lists(pm_comp_scratch *sc, const unsigned char *cvx, pm_dvec3 xo, pm_dvec3 
 			if (pass == 0)
 				P->nfc = sc->nbl - P->f0;
 		}
-		if (P->lit && follow)
+		if (P->lit && !P->unseen && follow)
 			close_matter(sc, P->f0 + P->nfc, a, sgrp);
 		P->nf = sc->nbl - P->f0;
 	}
@@ -1211,6 +1282,9 @@ weights(const pm_polyindex *pi, pm_vec3 x, pm_vec3 n,
 		P->nfc = P->ndyn = 0;
 		P->adyn = 0;
 		P->lit = 0;
+		/* 2 eps: a crossing within eps of B counts (seen()), and a
+		 * photon lies within eps of its polygon. */
+		pm_sight_box(sc->cv + P->v0, P->nv, xo, 2 * eps, &P->sight);
 		for (int j = 0; j < na && !P->lit; j++)
 			P->lit = facing(P, sc->psi[j], sc->c[j], nd) > 0;
 	}

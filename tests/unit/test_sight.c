@@ -1,0 +1,153 @@
+/* test_sight.c — a polygon's box on the cube of directions holds every
+ * point within e of it, and the grid finds every box a box meets. */
+#include <math.h>
+#include <stdint.h>
+#include <stdlib.h>
+
+#include "check.h"
+#include "estimators/sight.h"
+
+static uint64_t rng = 0x9e3779b97f4a7c15u;
+
+static double
+uni(void)
+{
+	rng ^= rng << 13;
+	rng ^= rng >> 7;
+	rng ^= rng << 17;
+	return (double)(rng >> 11) / 9007199254740992.0;
+}
+
+static double
+at(pm_dvec3 v, int a)
+{
+	return a == 0 ? v.x : a == 1 ? v.y : v.z;
+}
+
+/* A random triangle or quad of size about s centred near c. */
+static int
+poly(pm_dvec3 c, double s, pm_dvec3 *v)
+{
+	int n = uni() < 0.5 ? 3 : 4;
+	for (int k = 0; k < n; k++)
+		v[k] = pm_dadd(c, pm_dv3(s * (uni() - 0.5), s * (uni() - 0.5), s * (uni() - 0.5)));
+	return n;
+}
+
+/* 1 if point p (relative to the eye) lies in box b. */
+static int
+in_box(const pm_sight *b, pm_dvec3 p)
+{
+	int a = b->face / 2;
+	double m = (b->face & 1 ? -1 : 1) * at(p, a);
+	if (!(m > 0))
+		return 0;
+	for (int i = 0; i < 2; i++) {
+		double u = at(p, (a + 1 + i) % 3) / m;
+		if (u < b->lo[i] || u > b->hi[i])
+			return 0;
+	}
+	return 1;
+}
+
+TEST(box_holds_the_polygon_and_its_neighbourhood)
+{
+	pm_dvec3 eye = pm_dv3(0.1, -0.2, 0.3), v[4];
+	int bad = 0, boxed = 0, tried = 0;
+	for (int t = 0; t < 4000; t++) {
+		double e = 1e-3 * uni();
+		pm_dvec3 c = pm_dv3(4 * uni() - 2, 4 * uni() - 2, 4 * uni() - 2);
+		int n = poly(c, 0.5 * uni(), v);
+		pm_sight b;
+		pm_sight_box(v, n, eye, e, &b);
+		if (b.face < 0)
+			continue;
+		boxed++;
+		for (int s = 0; s < 50; s++) {
+			/* A point of the polygon (a convex combination of its
+			 * vertices), moved by up to e. */
+			double w[4], sum = 0;
+			pm_dvec3 p = pm_dv3(0, 0, 0), d;
+			for (int k = 0; k < n; k++)
+				sum += w[k] = uni();
+			for (int k = 0; k < n; k++)
+				p = pm_dadd(p, pm_dscale(v[k], w[k] / sum));
+			do
+				d = pm_dv3(2 * uni() - 1, 2 * uni() - 1, 2 * uni() - 1);
+			while (pm_ddot(d, d) > 1);
+			p = pm_dadd(p, pm_dscale(d, e));
+			tried++;
+			bad += !in_box(&b, pm_dsub(p, eye));
+		}
+	}
+	CHECKF(bad == 0, "%d of %d points outside their polygon's box", bad, tried);
+	CHECKF(boxed > 2000, "only %d of 4000 polygons boxed", boxed);
+}
+
+TEST(box_refuses_what_it_cannot_hold)
+{
+	pm_dvec3 v[3] = {{1, 0, 0}, {0, 1, 0}, {1, 1, 0.1}};
+	pm_sight b;
+	/* Across two faces of the cube of directions. */
+	pm_sight_box(v, 3, pm_dv3(0, 0, 0), 1e-6, &b);
+	CHECK(b.face == -1);
+	/* Within 2 e of the eye. */
+	pm_dvec3 w[3] = {{1, 0.1, 0}, {1, 0.2, 0}, {1.1, 0.1, 0}};
+	pm_sight_box(w, 3, pm_dv3(0.9995, 0.15, 0), 1e-3, &b);
+	CHECK(b.face == -1);
+	pm_sight_box(w, 3, pm_dv3(0, 0.15, 0), 1e-3, &b);
+	CHECK(b.face == 0);
+	pm_sight_box(w, 3, pm_dv3(2, 0.15, 0), 1e-3, &b);
+	CHECK(b.face == 1);
+	pm_dvec3 nan[3] = {{NAN, 0, 0}, {1, 0, 0}, {1, 1, 0}};
+	pm_sight_box(nan, 3, pm_dv3(0, 0, 0), 1e-3, &b);
+	CHECK(b.face == -1);
+}
+
+TEST(grid_finds_every_box_that_meets)
+{
+	enum { N = 600 };
+	static pm_sight s[N];
+	static int out[N], mark[N];
+	pm_sight_grid g = {0};
+	pm_dvec3 eye = pm_dv3(0, 0, 0), v[4];
+	int missed = 0, extra = 0, wide = 0, total = 0, stamp = 0;
+
+	for (int round = 0; round < 3; round++) {
+		for (int p = 0; p < N; p++) {
+			pm_dvec3 c = pm_dv3(6 * uni() - 3, 6 * uni() - 3, 6 * uni() - 3);
+			int n = poly(c, round == 2 ? 3 * uni() : 0.4 * uni(), v);
+			pm_sight_box(v, n, eye, 1e-4, &s[p]);
+			wide += s[p].face < 0;
+		}
+		CHECK(pm_sight_grid_build(&g, s, N));
+		for (int p = 0; p < N; p++)
+			mark[p] = 0;
+		for (int q = 0; q < N; q++) {
+			int k = pm_sight_grid_query(&g, N, &s[q], out, mark, ++stamp), found = 0;
+			total += round < 2 ? k : 0;
+			for (int i = 0; i < k; i++) {
+				extra += mark[out[i]] != stamp;
+				found += pm_sight_meet(&s[q], &s[out[i]]);
+			}
+			int want = 0;
+			for (int p = 0; p < N; p++)
+				want += pm_sight_meet(&s[q], &s[p]);
+			missed += want != found;
+		}
+	}
+	pm_sight_grid_free(&g);
+	CHECKF(missed == 0 && extra == 0, "%d queries missed a box, %d results unmarked", missed, extra);
+	CHECKF(wide > 0 && wide < 3 * N / 2, "%d of %d boxes wide", wide, 3 * N);
+	/* Small polygons scattered around the eye: most pairs apart. */
+	CHECKF(total < 2 * N * N / 4, "%d candidates for %d queries: the grid culls little", total, 2 * N);
+}
+
+int
+main(void)
+{
+	RUN(box_holds_the_polygon_and_its_neighbourhood);
+	RUN(box_refuses_what_it_cannot_hold);
+	RUN(grid_finds_every_box_that_meets);
+	return check_done();
+}
