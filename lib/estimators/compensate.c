@@ -934,11 +934,15 @@ pair_lists(pm_comp_scratch *sc, const unsigned char *cvx, pm_dvec3 xo, pm_dvec3 
 	for (int a = 0; a < ng; a++) {
 		cpoly *P = &sc->g[a];
 		const cgroup *SA = &sc->gr[P->grp];
-		int own = nxobj == 4 || SA->xsheet, sgrp = SA->sheet ? P->grp : -1;
+		int own = nxobj == 4, sgrp = SA->sheet ? P->grp : -1;
 		P->r0 = sc->nbl;
 		/* The back of a solid, seen from outside it, is hidden by the
 		 * solid itself, unless x lies on that solid (a face across a
-		 * convex edge). */
+		 * convex edge). A face of x's own sheet turned away more than
+		 * SMOOTH_COS is a back face too: the sheet's cone (SHEET_COS)
+		 * says which facets hide none of each other, not which x sees
+		 * (counted as seen, they read a sphere dark where it meets the
+		 * floor: torture seed 185). */
 		for (int b = 0; b < nxobj && !own; b++)
 			own = xobj[b] == P->obj && pm_ddot(P->N, n) >= SMOOTH_COS;
 		P->unseen = P->solid && !own && pm_ddot(P->N, xo) - P->d < -eps;
