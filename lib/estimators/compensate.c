@@ -21,6 +21,7 @@
 #include <math.h>
 #include <stdlib.h>
 
+#include "base/grow.h"
 #include "optics/bsdf.h"
 #include "estimators/clip.h"
 #include "estimators/overlap.h"
@@ -97,7 +98,6 @@ typedef struct cpoly {
 	int ndyn;              /* samples whose fate depends on the direction */
 	double adyn;           /* ... their area seen from x' */
 	int grp;               /* its group (cgroup) */
-	pm_sight sight;        /* its directions from x' (sight.h) */
 } cpoly;
 
 /* The cube's polygons in groups: a sheet (see SHEET_COS), or one polygon.
@@ -171,7 +171,7 @@ struct pm_comp_scratch {
 	pm_sight_grid grid;
 	int *cand;             /* polygons the grid gave for one P */
 	int candcap;
-	pm_sight *sg;          /* every polygon's sight, for the grid */
+	pm_sight *sg;          /* every polygon's directions from x' (sight.h) */
 	int sgcap;
 	int *gmk, *gskip;      /* per group: gskip holds its test for P if gmk is stamp */
 	int gmkcap;
@@ -254,34 +254,15 @@ pm_comp_last(const pm_comp_scratch *sc)
 	return &sc->last;
 }
 
-/* Room for need more elements of size sz in *p (capacity *cap, used n). */
-static int
-grow(void **p, int *cap, int n, int need, size_t sz)
-{
-	int c = *cap;
-	void *q;
-
-	if (n + need <= c)
-		return 1;
-	while (c < n + need)
-		c = c ? 2 * c : 64;
-	q = realloc(*p, (size_t)c * sz);
-	if (!q)
-		return 0;
-	*p = q;
-	*cap = c;
-	return 1;
-}
-
 static int
 grow_samples(pm_comp_scratch *sc, int need)
 {
 	int cap = sc->spcap;
 
-	if (!grow((void **)&sc->sp, &cap, sc->nsp, need, sizeof *sc->sp))
+	if (!pm_grow((void **)&sc->sp, &cap, sc->nsp, need, sizeof *sc->sp))
 		return 0;
 	cap = sc->spcap;
-	if (!grow((void **)&sc->sf, &cap, sc->nsp, need, sizeof *sc->sf))
+	if (!pm_grow((void **)&sc->sf, &cap, sc->nsp, need, sizeof *sc->sf))
 		return 0;
 	sc->spcap = cap;
 	return 1;
@@ -324,9 +305,9 @@ visit(void *vctx, uint32_t g)
 
 	if (sc->oom)
 		return;
-	if (!grow((void **)&sc->cv, &sc->cvcap, sc->ncv, cap, sizeof *sc->cv) ||
-	    !grow((void **)&sc->uv, &sc->uvcap, 2 * sc->ncv, 2 * cap, sizeof *sc->uv) ||
-	    !grow((void **)&sc->g, &sc->gcap, sc->ng, 1, sizeof *sc->g)) {
+	if (!pm_grow((void **)&sc->cv, &sc->cvcap, sc->ncv, cap, sizeof *sc->cv) ||
+	    !pm_grow((void **)&sc->uv, &sc->uvcap, 2 * sc->ncv, 2 * cap, sizeof *sc->uv) ||
+	    !pm_grow((void **)&sc->g, &sc->gcap, sc->ng, 1, sizeof *sc->g)) {
 		sc->oom = 1;
 		return;
 	}
@@ -551,7 +532,7 @@ pyramid(pm_comp_scratch *sc, const cpoly *P, pm_dvec3 xo, double eps)
 	pm_dvec3 c = pm_dv3(0, 0, 0);
 
 	sc->npyr = 0;
-	if (!grow((void **)&sc->pyr, &sc->pyrcap, 0, P->nv, sizeof *sc->pyr))
+	if (!pm_grow((void **)&sc->pyr, &sc->pyrcap, 0, P->nv, sizeof *sc->pyr))
 		return 0;
 	for (int i = 0; i < P->nv; i++)
 		c = pm_dadd(c, v[i]);
@@ -660,12 +641,12 @@ groups(pm_comp_scratch *sc, const uint32_t *patch, pm_dvec3 n)
 
 	while (hn < 2 * ng)
 		hn *= 2;
-	if (!grow((void **)&sc->ht, &sc->htcap, 0, hn, sizeof *sc->ht) ||
-	    !grow((void **)&sc->gr, &sc->grcap, 0, 3 * ng, sizeof *sc->gr) ||
-	    !grow((void **)&sc->gp, &sc->gpcap, 0, 3 * ng, sizeof *sc->gp) ||
-	    !grow((void **)&sc->gm, &sc->gmcap, 0, ng, sizeof *sc->gm) ||
-	    !grow((void **)&sc->mark, &sc->markcap, 0, ng, sizeof *sc->mark) ||
-	    !grow((void **)&sc->t, &sc->tcap, 0, ng, sizeof *sc->t))
+	if (!pm_grow((void **)&sc->ht, &sc->htcap, 0, hn, sizeof *sc->ht) ||
+	    !pm_grow((void **)&sc->gr, &sc->grcap, 0, 3 * ng, sizeof *sc->gr) ||
+	    !pm_grow((void **)&sc->gp, &sc->gpcap, 0, 3 * ng, sizeof *sc->gp) ||
+	    !pm_grow((void **)&sc->gm, &sc->gmcap, 0, ng, sizeof *sc->gm) ||
+	    !pm_grow((void **)&sc->mark, &sc->markcap, 0, ng, sizeof *sc->mark) ||
+	    !pm_grow((void **)&sc->t, &sc->tcap, 0, ng, sizeof *sc->t))
 		return 0;
 	/* New marks start unset; stamps start over before they could wrap. */
 	for (int i = sc->marked; i < sc->markcap; i++)
@@ -787,7 +768,7 @@ group_not_between(const pm_comp_scratch *sc, const cpoly *P, const cgroup *G, pm
 static inline void
 push(pm_comp_scratch *sc, int e)
 {
-	if (sc->nbl == sc->blcap && !grow((void **)&sc->bl, &sc->blcap, sc->nbl, 1, sizeof *sc->bl)) {
+	if (sc->nbl == sc->blcap && !pm_grow((void **)&sc->bl, &sc->blcap, sc->nbl, 1, sizeof *sc->bl)) {
 		sc->oom = 1;
 		return;
 	}
@@ -874,7 +855,7 @@ may_hide(const pm_comp_scratch *sc, const cpoly *P, int a, int b, const double *
 	const cpoly *B = &sc->g[b];
 	double sx = plsx[b], lo, hi, t, u;
 
-	if (fabs(sx) <= eps || b == a || !pm_sight_meet(&P->sight, &B->sight))
+	if (fabs(sx) <= eps || b == a || !pm_sight_meet(&sc->sg[a], &sc->sg[b]))
 		return 0;
 	/* P's sphere wholly on the side of B's plane where x' is: P cannot
 	 * cross it (span() would say the same). */
@@ -906,20 +887,17 @@ pair_lists(pm_comp_scratch *sc, const unsigned char *cvx, pm_dvec3 xo, pm_dvec3 
 	int ng = sc->ng, ngr = sc->ngr, follow = ngr <= FATE_MAX_GROUPS, grid = ng >= SIGHT_MIN;
 
 	sc->nbl = 0;
-	if (!grow((void **)&sc->span, &sc->spancap, 0, 2 * ng, sizeof *sc->span) ||
-	    !grow((void **)&sc->pl, &sc->plcap, 0, ng, sizeof *sc->pl))
+	if (!pm_grow((void **)&sc->span, &sc->spancap, 0, 2 * ng, sizeof *sc->span) ||
+	    !pm_grow((void **)&sc->pl, &sc->plcap, 0, ng, sizeof *sc->pl))
 		return 0;
 	if (grid) {
 		int gcap = sc->gmkcap;
-		if (!grow((void **)&sc->cand, &sc->candcap, 0, ng, sizeof *sc->cand) ||
-		    !grow((void **)&sc->sg, &sc->sgcap, 0, ng, sizeof *sc->sg) ||
-		    !grow((void **)&sc->gmk, &sc->gmkcap, 0, ngr, sizeof *sc->gmk) ||
-		    !grow((void **)&sc->gskip, &gcap, 0, ngr, sizeof *sc->gskip))
+		if (!pm_grow((void **)&sc->cand, &sc->candcap, 0, ng, sizeof *sc->cand) ||
+		    !pm_grow((void **)&sc->gmk, &sc->gmkcap, 0, ngr, sizeof *sc->gmk) ||
+		    !pm_grow((void **)&sc->gskip, &gcap, 0, ngr, sizeof *sc->gskip))
 			return 0;
 		for (int G = 0; G < ngr; G++)
 			sc->gmk[G] = 0;
-		for (int b = 0; b < ng; b++)
-			sc->sg[b] = sc->g[b].sight;
 		if (!pm_sight_grid_build(&sc->grid, sc->sg, ng))
 			return 0;
 	}
@@ -950,7 +928,7 @@ pair_lists(pm_comp_scratch *sc, const unsigned char *cvx, pm_dvec3 xo, pm_dvec3 
 			return 0;
 		if (P->unseen || !P->lit)
 			;
-		else if (!grid || P->sight.face < 0) {
+		else if (!grid || sc->sg[a].face < 0) {
 			for (int G = 0; G < ngr; G++) {
 				const cgroup *Gr = &sc->gr[G];
 				if (skip_group(sc, cvx, P, G, sgrp, xo, eps))
@@ -960,7 +938,7 @@ pair_lists(pm_comp_scratch *sc, const unsigned char *cvx, pm_dvec3 xo, pm_dvec3 
 						push(sc, sc->gp[gi]);
 			}
 		} else {
-			int st = ++sc->stamp, nc = pm_sight_grid_query(&sc->grid, ng, &P->sight, sc->cand, sc->mark, st);
+			int st = ++sc->stamp, nc = pm_sight_grid_query(&sc->grid, ng, &sc->sg[a], sc->cand, sc->mark, st);
 			for (int k = 0; k < nc; k++) {
 				int b = sc->cand[k], G = sc->g[b].grp;
 				if (sc->gmk[G] != st) {
@@ -1046,7 +1024,7 @@ pair_lists(pm_comp_scratch *sc, const unsigned char *cvx, pm_dvec3 xo, pm_dvec3 
 		close_matter(sc, *xf0, -1, xs);
 	*nxf = sc->nbl - *xf0;
 	/* Room for the candidates the photons' loop lists past the end. */
-	if (!grow((void **)&sc->bl, &sc->blcap, sc->nbl, ng + 1, sizeof *sc->bl))
+	if (!pm_grow((void **)&sc->bl, &sc->blcap, sc->nbl, ng + 1, sizeof *sc->bl))
 		sc->oom = 1;
 	return !sc->oom;
 }
@@ -1272,6 +1250,8 @@ weights(const pm_polyindex *pi, pm_vec3 x, pm_vec3 n,
 	mx = dmax(fabs(xd.x), dmax(fabs(xd.y), fabs(xd.z)));
 	eps = 1e-4 * h + 8 * FLT_EPSILON * mx;
 	xo = pm_dscale(nd, dmax(XOFF_REL * h, 4 * eps));
+	if (!pm_grow((void **)&sc->sg, &sc->sgcap, 0, sc->ng, sizeof *sc->sg))
+		goto out;
 
 	for (int a = 0; a < sc->ng; a++) {
 		cpoly *P = &sc->g[a];
@@ -1288,7 +1268,7 @@ weights(const pm_polyindex *pi, pm_vec3 x, pm_vec3 n,
 		P->lit = 0;
 		/* 2 eps: a crossing within eps of B counts (seen()), and a
 		 * photon lies within eps of its polygon. */
-		pm_sight_box(sc->cv + P->v0, P->nv, xo, 2 * eps, &P->sight);
+		pm_sight_box(sc->cv + P->v0, P->nv, xo, 2 * eps, &sc->sg[a]);
 		for (int j = 0; j < na && !P->lit; j++)
 			P->lit = facing(P, sc->psi[j], sc->c[j], nd) > 0;
 	}
@@ -1442,7 +1422,7 @@ weights(const pm_polyindex *pi, pm_vec3 x, pm_vec3 n,
 					double dn = pm_ddot(B->N, psi), ov = 0;
 					int fb = (cand[0] & MATTER) && dn < 0 ? -1 : 2 * B->obj + (dn > 0);
 					if (fb >= 0) {
-						if (!grow((void **)&sc->ov, &sc->ovcap, 0, 2 * (B->nv + P->nv) + 8, sizeof *sc->ov))
+						if (!pm_grow((void **)&sc->ov, &sc->ovcap, 0, 2 * (B->nv + P->nv) + 8, sizeof *sc->ov))
 							goto out;
 						ov = pm_overlap_area(sc->cv + B->v0, B->nv, sc->cv + P->v0, P->nv, P->N, psi, sc->ov);
 					}

@@ -4,6 +4,8 @@
 #include <math.h>
 #include <stdlib.h>
 
+#include "base/grow.h"
+
 #define C PM_SIGHT_CELLS
 #define NCELL (6 * C * C)
 /* A box over more cells than this goes on the wide list. */
@@ -81,28 +83,13 @@ many(const pm_sight *b)
 	return (c1[0] - c0[0] + 1) * (c1[1] - c0[1] + 1) > MAX_CELLS;
 }
 
-static int
-room(int **p, int *cap, int need)
-{
-	if (need <= *cap)
-		return 1;
-	int c = *cap ? *cap : 64;
-	while (c < need)
-		c *= 2;
-	int *q = realloc(*p, (size_t)c * sizeof *q);
-	if (!q)
-		return 0;
-	*p = q;
-	*cap = c;
-	return 1;
-}
-
 int
 pm_sight_grid_build(pm_sight_grid *g, const pm_sight *s, int n)
 {
 	int c0[2], c1[2], total = 0;
 
-	if (!room(&g->start, &g->startcap, NCELL + 1) || !room(&g->wide, &g->widecap, n))
+	if (!pm_grow((void **)&g->start, &g->startcap, 0, NCELL + 1, sizeof *g->start) ||
+	    !pm_grow((void **)&g->wide, &g->widecap, 0, n, sizeof *g->wide))
 		return 0;
 	for (int i = 0; i <= NCELL; i++)
 		g->start[i] = 0;
@@ -121,7 +108,7 @@ pm_sight_grid_build(pm_sight_grid *g, const pm_sight *s, int n)
 	for (int i = 0; i < NCELL; i++)
 		g->start[i + 1] += g->start[i];
 	total = g->start[NCELL];
-	if (!room(&g->item, &g->itemcap, total))
+	if (!pm_grow((void **)&g->item, &g->itemcap, 0, total, sizeof *g->item))
 		return 0;
 	for (int p = 0; p < n; p++) {
 		if (many(&s[p]))
