@@ -7,19 +7,22 @@
 # averaged with pm-average) against pm's path tracer, both against a
 # converged path-traced reference.
 #
-# Usage: bench/families.sh [quick|full] [BUILD_DIR]   (default quick, build;
-# needs bin/ and bench/errsplit: make bench-progs). Environment, defaults by
-# mode (quick | full):
+# Usage: bench/families.sh [quick|mid|full] [BUILD_DIR]   (default quick,
+# build; needs bin/ and bench/errsplit: make bench-progs). Environment,
+# defaults by mode (quick | mid | full):
 #   SCENES   cornell room caustic and bench/families.py's families
 #            (prims dense scanned soup thin); add a family there and here
-#   SIZE     image width: 96 | 256 (height by the scene's aspect)
+#   SIZE     image width: 96 | 256 | 256 (height by the scene's aspect)
 #   PHOTONS  photons per pass: 200000
-#   RUNS     view-pass timings per estimator, median taken: 3 | 5
-#   N        pass pairs per estimator for the efficiency: 8 | 32
-#   REF_PASSES x REF_SPP  the reference: 8 x 256 | 32 x 1024 (cached in
+#   RUNS     view-pass timings per estimator, median taken: 3 | 3 | 5
+#   N        pass pairs per estimator for the efficiency: 8 | 8 | 32
+#   REF_PASSES x REF_SPP  the reference: 8 x 256 | 8 x 256 | 32 x 1024 (cached in
 #            BENCH_CACHE, default BUILD_DIR/bench-cache)
 #   J        threads per program: 2
-#   BUDGET   seconds a scene's compensated series may take: 120 | 1200;
+#   GATHER   final gathering's rays per pixel for the series with it
+#            (gather-compensated, gather-classical; pm-render -g): 32; 0
+#            leaves those series out
+#   BUDGET   seconds a scene's compensated series may take: 120 | 300 | 1200;
 #            past it (and after 2 pass pairs) the series stops, and a view
 #            pass that takes more than BUDGET / 4 is timed once, not RUNS
 #            times, and one over BUDGET / 2 gets no efficiency series (a
@@ -37,17 +40,20 @@ B=${2:-build}
 case $B in /*) ;; *) B=$top/$B ;; esac
 case $mode in
 quick) d_size=96 d_runs=3 d_n=8 d_rp=8 d_rs=256 d_budget=120 ;;
+mid) d_size=256 d_runs=3 d_n=8 d_rp=8 d_rs=256 d_budget=300 ;;
 full) d_size=256 d_runs=5 d_n=32 d_rp=32 d_rs=1024 d_budget=1200 ;;
-*) echo "usage: bench/families.sh [quick|full] [BUILD_DIR]" >&2; exit 2 ;;
+*) echo "usage: bench/families.sh [quick|mid|full] [BUILD_DIR]" >&2; exit 2 ;;
 esac
 SCENES=${SCENES:-cornell room caustic prims dense scanned soup thin}
-SIZE=${SIZE:-$d_size} PHOTONS=${PHOTONS:-200000} RUNS=${RUNS:-$d_runs} N=${N:-$d_n} J=${J:-2}
+SIZE=${SIZE:-$d_size} PHOTONS=${PHOTONS:-200000} RUNS=${RUNS:-$d_runs} N=${N:-$d_n} J=${J:-2} GATHER=${GATHER:-32}
 REF_PASSES=${REF_PASSES:-$d_rp} REF_SPP=${REF_SPP:-$d_rs} BUDGET=${BUDGET:-$d_budget}
 . "$top/bench/passes.sh"
 command -v python3 >/dev/null || { echo "$0: python3 missing (bench/families.py writes the scenes)" >&2; exit 1; }
 cost=$res/families-cost.tsv eff=$res/families-efficiency.tsv
 printf 'scene\tpolygons\tsize\tcompensated_s\tclassical_s\tratio\n' >"$cost"
 printf 'scene\tmethod\tpasses\tseconds\trelmse\tefficiency\tvs_path\n' >"$eff"
+series="compensated classical path"
+[ "$GATHER" -gt 0 ] && series="compensated classical gather-compensated gather-classical path"
 now() { date +%s.%N; }
 log() { echo "families: $*" >&2; }
 # median of the numbers on stdin
@@ -87,8 +93,7 @@ for name in $SCENES; do
 	# where one compensated view pass alone takes half the budget.
 	if awk -v t="$(cat "$tmp/t-compensated")" -v b="$BUDGET" 'BEGIN { exit !(t > b / 2) }'; then
 		log "$name: a compensated view pass takes over BUDGET / 2 = $BUDGET / 2 s: no efficiency series"
-		printf '%s	%s	-	-	-	-	-
-' "$name" compensated "$name" classical "$name" path >>"$eff"
+		for est in $series; do printf '%s\t%s\t-\t-\t-\t-\t-\n' "$name" $est; done >>"$eff"
 		continue
 	fi
 	rk=$cache/fam-ref-$name-$(cat "$sc" "$(dirname "$sc")"/*.obj 2>/dev/null | cksum | cut -d' ' -f1)-$REF_PASSES-$REF_SPP.exr
@@ -101,7 +106,11 @@ for name in $SCENES; do
 		rm -f "$tmp"/ref-*.exr
 	fi
 	tcomp=
-	for est in compensated classical path; do
+	for est in $series; do
+		case $est in
+		gather-*) e=${est#gather-} g=$GATHER ;;
+		*) e=$est g=0 ;;
+		esac
 		log "$name: $est pass pairs"
 		t=0 i=0
 		while :; do
@@ -110,8 +119,8 @@ for name in $SCENES; do
 				s=$(timed "$bin/pm-render" -q -j "$J" -e path -p 64 -l 1 -P "$i/1000" "$sc" -o "$tmp/pass-$i.exr")
 			else
 				s=$(timed sh -c '"$1/pm-shoot" -q -j "$2" -n "$3" -P "$4" "$5" | "$1/pm-build" -q -j "$2" |
-					"$1/pm-render" -q -j "$2" -e "$6" -P "$4" "$5" - -o "$7"' sh \
-					"$bin" "$J" "$PHOTONS" "$i/$N" "$sc" $est "$tmp/pass-$i.exr")
+					"$1/pm-render" -q -j "$2" -e "$6" -g "$8" -P "$4" "$5" - -o "$7"' sh \
+					"$bin" "$J" "$PHOTONS" "$i/$N" "$sc" $e "$tmp/pass-$i.exr" $g)
 			fi
 			t=$(awk -v a="$t" -v b="$s" 'BEGIN { print a + b }')
 			if [ $est = path ]; then
