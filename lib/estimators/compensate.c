@@ -58,9 +58,9 @@
  * scenes with curved meshes: BENCHMARKS.md, "Sheets".) */
 #define SHEET_COS 0.7
 /* More groups than this in one cube (a rough mesh, facets facing every
- * way): the fates are not followed (every ray counts as open), which keeps
- * the cost of such cubes bounded; what x' sees still is. A smooth mesh of
- * any density is a few sheets. */
+ * way): the fates are not followed (every ray counts as open, past what
+ * lies on its own plane), which keeps the cost of such cubes bounded; what
+ * x' sees still is. A smooth mesh of any density is a few sheets. */
 #define FATE_MAX_GROUPS 96
 /* ... a polygon wholly in front of it. */
 #define FRONT (1 << 29)
@@ -149,8 +149,6 @@ struct pm_comp_scratch {
 	                          direction (unused for dynamic ones) */
 	int nsp, spcap;
 	pm_dvec3 *pyr;         /* one polygon's pyramid from x' (pyramid()) */
-	double *span;          /* every polygon's span about one plane */
-	int spancap;
 	double *pl;            /* the polygons' planes, one array per number
 	                          (N.x, N.y, N.z, d, N . x' - d), and ... */
 	double *t;             /* ... each plane's N . c - d for one centre c,
@@ -169,7 +167,8 @@ struct pm_comp_scratch {
 	                          in the sight grid, if stamp */
 	int markcap, marked, stamp;
 	pm_sight_grid grid;
-	int *cand;             /* polygons the grid gave for one P */
+	int *cand;             /* polygons the grid gave for one P, then
+	                          those off its plane in its F list */
 	int candcap;
 	pm_sight *sg;          /* every polygon's directions from x' (sight.h) */
 	int sgcap;
@@ -232,7 +231,6 @@ pm_comp_scratch_free(pm_comp_scratch *sc)
 	free(sc->sf);
 	free(sc->ov);
 	free(sc->pyr);
-	free(sc->span);
 	free(sc->pl);
 	free(sc->t);
 	free(sc->gr);
@@ -775,6 +773,28 @@ push(pm_comp_scratch *sc, int e)
 	sc->bl[sc->nbl++] = e;
 }
 
+/* 1 if B, on P's plane, may cover part of P: a vertex or the centre of
+ * either lies inside the other, off its edges. Neighbours that only share
+ * an edge (the facets of a flat patch) do not; a surface given twice does.
+ * (An overlap only by crossing edges is missed: used only where fates are
+ * not followed, to keep that from sampling every flat neighbour.) */
+static int
+may_cover(const pm_comp_scratch *sc, const cpoly *P, const cpoly *B, double eps)
+{
+	for (int k = 0; k < 2; k++) {
+		const cpoly *U = k ? B : P, *V = k ? P : B;
+		pm_dvec3 m = pm_dv3(0, 0, 0);
+		for (int i = 0; i < V->nv; i++) {
+			if (inside(sc, U, sc->cv[V->v0 + i], eps, 0))
+				return 1;
+			m = pm_dadd(m, sc->cv[V->v0 + i]);
+		}
+		if (inside(sc, U, pm_dscale(m, 1.0 / V->nv), eps, 0))
+			return 1;
+	}
+	return 0;
+}
+
 /* A ray that meets the back of a solid has gone through its front first,
  * unless it started inside: so where a list holds a solid met from behind,
  * it holds the rest of that solid's polygons in the cube too (each again
@@ -887,13 +907,13 @@ pair_lists(pm_comp_scratch *sc, const unsigned char *cvx, pm_dvec3 xo, pm_dvec3 
 	int ng = sc->ng, ngr = sc->ngr, follow = ngr <= FATE_MAX_GROUPS, grid = ng >= SIGHT_MIN;
 
 	sc->nbl = 0;
-	if (!pm_grow((void **)&sc->span, &sc->spancap, 0, 2 * ng, sizeof *sc->span) ||
-	    !pm_grow((void **)&sc->pl, &sc->plcap, 0, ng, sizeof *sc->pl))
+	if (!pm_grow((void **)&sc->pl, &sc->plcap, 0, ng, sizeof *sc->pl))
+		return 0;
+	if (!pm_grow((void **)&sc->cand, &sc->candcap, 0, ng, sizeof *sc->cand))
 		return 0;
 	if (grid) {
 		int gcap = sc->gmkcap;
-		if (!pm_grow((void **)&sc->cand, &sc->candcap, 0, ng, sizeof *sc->cand) ||
-		    !pm_grow((void **)&sc->gmk, &sc->gmkcap, 0, ngr, sizeof *sc->gmk) ||
+		if (!pm_grow((void **)&sc->gmk, &sc->gmkcap, 0, ngr, sizeof *sc->gmk) ||
 		    !pm_grow((void **)&sc->gskip, &gcap, 0, ngr, sizeof *sc->gskip))
 			return 0;
 		for (int G = 0; G < ngr; G++)
@@ -912,7 +932,7 @@ pair_lists(pm_comp_scratch *sc, const unsigned char *cvx, pm_dvec3 xo, pm_dvec3 
 	for (int a = 0; a < ng; a++) {
 		cpoly *P = &sc->g[a];
 		const cgroup *SA = &sc->gr[P->grp];
-		int own = nxobj == 4, sgrp = SA->sheet ? P->grp : -1;
+		int own = nxobj == 4, sgrp = SA->sheet ? P->grp : -1, nc = -1;
 		P->r0 = sc->nbl;
 		/* The back of a solid, seen from outside it, is hidden by the
 		 * solid itself, unless x lies on that solid (a face across a
@@ -938,7 +958,8 @@ pair_lists(pm_comp_scratch *sc, const unsigned char *cvx, pm_dvec3 xo, pm_dvec3 
 						push(sc, sc->gp[gi]);
 			}
 		} else {
-			int st = ++sc->stamp, nc = pm_sight_grid_query(&sc->grid, ng, &sc->sg[a], sc->cand, sc->mark, st);
+			int st = ++sc->stamp;
+			nc = pm_sight_grid_query(&sc->grid, ng, &sc->sg[a], sc->cand, sc->mark, st);
 			for (int k = 0; k < nc; k++) {
 				int b = sc->cand[k], G = sc->g[b].grp;
 				if (sc->gmk[G] != st) {
@@ -951,49 +972,67 @@ pair_lists(pm_comp_scratch *sc, const unsigned char *cvx, pm_dvec3 xo, pm_dvec3 
 		}
 		P->nr = sc->nbl - P->r0;
 		P->f0 = sc->nbl;
-		for (int pass = 0; pass < 2 && P->lit && !P->unseen && follow; pass++) {
-			for (int G = 0; G < ngr; G++) {
-				const cgroup *Gr = &sc->gr[G];
-				if (G == sgrp || (Gr->np > 1 && group_behind(Gr, P->Ne, P->de, eps)))
-					continue;
-				for (int gi = Gr->p0; gi < Gr->p0 + Gr->np; gi++) {
-					int b = sc->gp[gi];
-					const cpoly *B = &sc->g[b];
-					double lo, hi, plo, phi;
-					int layer = fabs(pm_ddot(B->N, P->N)) >= LAYER_COS, cand = 0, on;
-					if (b == a)
-						continue;
-					if (pass == 0) {
-						/* span() of B about P's plane */
-						double t = pm_ddot(P->Ne, B->c) - P->de;
-						if (fabs(t) > B->rad) {
-							sc->span[2 * b] = t - B->rad;
-							sc->span[2 * b + 1] = t + B->rad;
-						} else
-							span_verts(sc, B, P->Ne, P->de, &sc->span[2 * b], &sc->span[2 * b + 1]);
-					}
-					lo = sc->span[2 * b];
-					hi = sc->span[2 * b + 1];
-					on = layer && hi <= eps && lo >= -eps;
-					if (on != (pass == 0))
-						continue;
-					if (on)
-						/* On P's plane: resting on it facing it, or the
-						 * same surface twice (the lower number wins). */
-						cand = pm_ddot(B->Ne, P->Ne) < 0 || B->g < P->g;
-					else if (layer && hi > eps)
-						cand = 1;
-					else if (B->solid && hi > eps) {
-						span(sc, P, B->N, B->d, &plo, &phi);
-						cand = plo < -eps ? 2 : 0;
-					}
-					if (cand)
-						push(sc, (cand == 2 ? b | MATTER : b) | (!on && lo >= -eps ? FRONT : 0));
-				}
-			}
-			if (pass == 0)
-				P->nfc = sc->nbl - P->f0;
+		/* What lies on P's plane is listed even where fates are not
+		 * followed: a surface given twice, or a face resting on P, covers
+		 * P's area whatever the direction, so without it a floor given
+		 * twice counts twice (torture seed 166: a floor quad on a room's
+		 * floor under a subdivided sphere read 3 % dark). There, only
+		 * other objects' polygons that the sight grid gave (all, for a wide
+		 * box) are tried: a polygon covering a point of P that x' sees is
+		 * seen in the same direction, and cover matters only where x' sees
+		 * (sample()); a mesh that covers itself is left out. */
+		for (int k = 0; !follow && P->lit && !P->unseen && k < (nc < 0 ? ng : nc); k++) {
+			int b = nc < 0 ? k : sc->cand[k];
+			const cpoly *B = &sc->g[b];
+			double lo, hi;
+			if (B->obj == P->obj || fabs(pm_ddot(B->N, P->N)) < LAYER_COS)
+				continue;
+			span(sc, B, P->Ne, P->de, &lo, &hi);
+			if (hi <= eps && lo >= -eps && (pm_ddot(B->Ne, P->Ne) < 0 || B->g < P->g) &&
+			    may_cover(sc, P, B, eps))
+				push(sc, b);
 		}
+		/* Where they are, one walk: those on P's plane go first, the
+		 * rest wait in sc->cand. */
+		int noff = 0;
+		for (int G = 0; G < ngr && follow && P->lit && !P->unseen; G++) {
+			const cgroup *Gr = &sc->gr[G];
+			if (G == sgrp || (Gr->np > 1 && group_behind(Gr, P->Ne, P->de, eps)))
+				continue;
+			for (int gi = Gr->p0; gi < Gr->p0 + Gr->np; gi++) {
+				int b = sc->gp[gi];
+				const cpoly *B = &sc->g[b];
+				double lo, hi, plo, phi;
+				int layer = fabs(pm_ddot(B->N, P->N)) >= LAYER_COS, cand = 0;
+				if (b == a)
+					continue;
+				/* span() of B about P's plane */
+				double t = pm_ddot(P->Ne, B->c) - P->de;
+				if (fabs(t) > B->rad) {
+					lo = t - B->rad;
+					hi = t + B->rad;
+				} else
+					span_verts(sc, B, P->Ne, P->de, &lo, &hi);
+				if (layer && hi <= eps && lo >= -eps) {
+					/* On P's plane: resting on it facing it, or the
+					 * same surface twice (the lower number wins). */
+					if (pm_ddot(B->Ne, P->Ne) < 0 || B->g < P->g)
+						push(sc, b);
+					continue;
+				}
+				if (layer && hi > eps)
+					cand = 1;
+				else if (B->solid && hi > eps) {
+					span(sc, P, B->N, B->d, &plo, &phi);
+					cand = plo < -eps ? 2 : 0;
+				}
+				if (cand)
+					sc->cand[noff++] = (cand == 2 ? b | MATTER : b) | (lo >= -eps ? FRONT : 0);
+			}
+		}
+		P->nfc = sc->nbl - P->f0;
+		for (int k = 0; k < noff; k++)
+			push(sc, sc->cand[k]);
 		if (P->lit && !P->unseen && follow)
 			close_matter(sc, P->f0 + P->nfc, a, sgrp);
 		P->nf = sc->nbl - P->f0;
