@@ -773,6 +773,14 @@ push(pm_comp_scratch *sc, int e)
 	sc->bl[sc->nbl++] = e;
 }
 
+/* B lying on P's plane covers it: resting on it facing it, or the same
+ * surface twice (the lower number wins). */
+static inline int
+plane_covers(const cpoly *P, const cpoly *B)
+{
+	return pm_ddot(B->Ne, P->Ne) < 0 || B->g < P->g;
+}
+
 /* 1 if B, on P's plane, may cover part of P: a vertex or the centre of
  * either lies inside the other, off its edges. Neighbours that only share
  * an edge (the facets of a flat patch) do not; a surface given twice does.
@@ -988,8 +996,7 @@ pair_lists(pm_comp_scratch *sc, const unsigned char *cvx, pm_dvec3 xo, pm_dvec3 
 			if (B->obj == P->obj || fabs(pm_ddot(B->N, P->N)) < LAYER_COS)
 				continue;
 			span(sc, B, P->Ne, P->de, &lo, &hi);
-			if (hi <= eps && lo >= -eps && (pm_ddot(B->Ne, P->Ne) < 0 || B->g < P->g) &&
-			    may_cover(sc, P, B, eps))
+			if (hi <= eps && lo >= -eps && plane_covers(P, B) && may_cover(sc, P, B, eps))
 				push(sc, b);
 		}
 		/* Where they are, one walk: those on P's plane go first, the
@@ -1006,17 +1013,9 @@ pair_lists(pm_comp_scratch *sc, const unsigned char *cvx, pm_dvec3 xo, pm_dvec3 
 				int layer = fabs(pm_ddot(B->N, P->N)) >= LAYER_COS, cand = 0;
 				if (b == a)
 					continue;
-				/* span() of B about P's plane */
-				double t = pm_ddot(P->Ne, B->c) - P->de;
-				if (fabs(t) > B->rad) {
-					lo = t - B->rad;
-					hi = t + B->rad;
-				} else
-					span_verts(sc, B, P->Ne, P->de, &lo, &hi);
+				span(sc, B, P->Ne, P->de, &lo, &hi);
 				if (layer && hi <= eps && lo >= -eps) {
-					/* On P's plane: resting on it facing it, or the
-					 * same surface twice (the lower number wins). */
-					if (pm_ddot(B->Ne, P->Ne) < 0 || B->g < P->g)
+					if (plane_covers(P, B))
 						push(sc, b);
 					continue;
 				}
