@@ -68,6 +68,12 @@
  * from x' come from a grid of where x' sees them (sight.h); below, from
  * every pair. Both apply the same test. */
 #define SIGHT_MIN 32
+/* Up to this many groups in the cube (a smooth mesh is a few sheets), each
+ * is asked once per polygon whether it can hide any of it; the grid is
+ * queried only when those that can hold SIGHT_MIN polygons or more. A
+ * query on a sheet of thousands of facets returns mostly the polygon's own
+ * sheet, which is never on its list (dense: two thirds of an estimate). */
+#define FEW_GROUPS 8
 #define IDX(e) ((e) & (FRONT - 1))
 
 typedef struct cpoly {
@@ -901,6 +907,32 @@ may_hide(const pm_comp_scratch *sc, const cpoly *P, int a, int b, const double *
 	return (sx > 0 ? lo < -eps : hi > eps) && between(sc, P, B, xo, eps, u);
 }
 
+/* With few groups (FEW_GROUPS), asks each once whether it can hide part of
+ * P (gskip, stamped st in gmk); if those that can hold fewer than
+ * SIGHT_MIN polygons, lists them by may_hide() and returns 1, with no grid
+ * query. 0: the caller queries the grid (the answers stay in gskip). */
+static int
+few_hiders(pm_comp_scratch *sc, const unsigned char *cvx, const cpoly *P, int a, int sgrp,
+           const double *plsx, pm_dvec3 xo, double eps, int own, int st)
+{
+	int ngr = sc->ngr, nmay = 0;
+
+	if (ngr > FEW_GROUPS)
+		return 0;
+	for (int G = 0; G < ngr; G++) {
+		sc->gmk[G] = st;
+		sc->gskip[G] = skip_group(sc, cvx, P, G, sgrp, xo, eps);
+		nmay += sc->gskip[G] ? 0 : sc->gr[G].np;
+	}
+	if (nmay >= SIGHT_MIN)
+		return 0;
+	for (int G = 0; G < ngr; G++)
+		for (int gi = sc->gr[G].p0; gi < sc->gr[G].p0 + sc->gr[G].np && !sc->gskip[G]; gi++)
+			if (may_hide(sc, P, a, sc->gp[gi], plsx, xo, eps, own))
+				push(sc, sc->gp[gi]);
+	return 1;
+}
+
 /* For each polygon: which others may hide part of it from x' (R list), and
  * which a backward ray from it may meet so that its fate differs from the
  * open one (F list): layers over it (|N_b . N| >= LAYER_COS) with some part
@@ -926,9 +958,8 @@ pair_lists(pm_comp_scratch *sc, const unsigned char *cvx, pm_dvec3 xo, pm_dvec3 
 			return 0;
 		for (int G = 0; G < ngr; G++)
 			sc->gmk[G] = 0;
-		if (!pm_sight_grid_build(&sc->grid, sc->sg, ng))
-			return 0;
 	}
+	int built = 0;
 	int xobj[4], nxobj = 0;
 
 	for (int b = 0; b < ng; b++)
@@ -965,8 +996,11 @@ pair_lists(pm_comp_scratch *sc, const unsigned char *cvx, pm_dvec3 xo, pm_dvec3 
 					if (may_hide(sc, P, a, sc->gp[gi], plsx, xo, eps, own))
 						push(sc, sc->gp[gi]);
 			}
-		} else {
-			int st = ++sc->stamp;
+		} else if (!few_hiders(sc, cvx, P, a, sgrp, plsx, xo, eps, own, ++sc->stamp)) {
+			int st = sc->stamp;
+			if (!built && !pm_sight_grid_build(&sc->grid, sc->sg, ng))
+				return 0;
+			built = 1;
 			nc = pm_sight_grid_query(&sc->grid, ng, &sc->sg[a], sc->cand, sc->mark, st);
 			for (int k = 0; k < nc; k++) {
 				int b = sc->cand[k], G = sc->g[b].grp;
