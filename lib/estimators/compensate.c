@@ -1216,6 +1216,38 @@ facing(const cpoly *P, pm_dvec3 psi, double c, pm_dvec3 n)
 	return dmax(0, pm_ddot(psi, P->Ne));
 }
 
+/* The weights where the cube holds one polygon (most cubes: the middle of
+ * a wall or a floor), the general path's answer without its groups, lists
+ * and sight boxes, which have nothing to do there: a photon counts when it
+ * lies on the polygon's plane on the side it faces (nothing can hide it or
+ * change its fate), with the polygon's area as its target area. */
+static void
+one_polygon(pm_comp_scratch *sc, const pm_vec3 *pos, pm_dvec3 xd, pm_dvec3 nd, double h, double eps,
+            double *w, pm_comp_stats *z)
+{
+	const cpoly *P = &sc->g[0];
+	double thr = PM_COMP_SKIP_REL * 4 * h * h;
+
+	for (int j = 0; j < z->front; j++) {
+		int i = sc->act[j];
+		pm_dvec3 r = pm_dsub(pm_dfromf(pos[i]), xd), psi = sc->psi[j];
+		double c = sc->c[j], f, A;
+		if (fabs(pm_ddot(P->N, r) - P->d) > eps || !(pm_ddot(psi, P->Ne) > 0)) {
+			z->hidden++;
+			continue;
+		}
+		f = facing(P, psi, c, nd);
+		A = f > 0 ? f * P->A : 0;
+		/* The photon's own spot (an unsampled polygon's share of GRID^2
+		 * cells), as in the general path. */
+		A = dmax(A, f * P->A / (GRID * GRID));
+		if (A > thr * c)
+			w[i] = c / A;
+		else
+			z->skipped++;
+	}
+}
+
 /* pm_comp_weights, or with hfix > 0 (pm_comp_weights_cube) the open cube
  * of that half-size. */
 static void
@@ -1330,9 +1362,11 @@ weights(const pm_polyindex *pi, pm_vec3 x, pm_vec3 n,
 		double sxo = pm_ddot(P->N, xo) - P->d;
 		P->Ne = P->solid || sxo >= 0 ? P->N : pm_dscale(P->N, -1);
 		P->de = pm_ddot(P->Ne, P->N) * P->d;
-		P->xon = fabs(P->d) <= eps && inside(sc, P, pm_dv3(0, 0, 0), eps, 1);
 		P->xpar = fabs(pm_ddot(P->N, nd)) >= 1 - PARALLEL_EPS && fabs(P->d) <= eps;
 		P->aopen = P->A;
+		if (sc->ng == 1)
+			break;
+		P->xon = fabs(P->d) <= eps && inside(sc, P, pm_dv3(0, 0, 0), eps, 1);
 		P->unseen = 0;
 		P->convex = pm_poly_convex(sc->cv + P->v0, P->nv, P->N);
 		P->nfc = P->ndyn = 0;
@@ -1343,6 +1377,10 @@ weights(const pm_polyindex *pi, pm_vec3 x, pm_vec3 n,
 		pm_sight_box(sc->cv + P->v0, P->nv, xo, 2 * eps, &sc->sg[a]);
 		for (int j = 0; j < na && !P->lit; j++)
 			P->lit = facing(P, sc->psi[j], sc->c[j], nd) > 0;
+	}
+	if (sc->ng == 1) {
+		one_polygon(sc, pos, xd, nd, h, eps, w, &z);
+		goto out;
 	}
 	if (!groups(sc, pi->patch, nd))
 		goto out;
