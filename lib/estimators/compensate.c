@@ -933,6 +933,12 @@ few_hiders(pm_comp_scratch *sc, const unsigned char *cvx, const cpoly *P, int a,
 	return 1;
 }
 
+static int
+one_sheet(const pm_comp_scratch *sc)
+{
+	return sc->ngr == 1 && sc->gr[0].sheet;
+}
+
 /* For each polygon: which others may hide part of it from x' (R list), and
  * which a backward ray from it may meet so that its fate differs from the
  * open one (F list): layers over it (|N_b . N| >= LAYER_COS) with some part
@@ -945,6 +951,10 @@ pair_lists(pm_comp_scratch *sc, const unsigned char *cvx, pm_dvec3 xo, pm_dvec3 
            int *xf0, int *nxf)
 {
 	int ng = sc->ng, ngr = sc->ngr, follow = ngr <= FATE_MAX_GROUPS, grid = ng >= SIGHT_MIN;
+	/* One sheet is all the cube holds: it hides none of itself, and a ray
+	 * leaving it does not meet it again, so every polygon's lists are
+	 * empty (x's too, where x lies on it). */
+	int alone = one_sheet(sc);
 
 	sc->nbl = 0;
 	if (!pm_grow((void **)&sc->pl, &sc->plcap, 0, ng, sizeof *sc->pl))
@@ -983,6 +993,11 @@ pair_lists(pm_comp_scratch *sc, const unsigned char *cvx, pm_dvec3 xo, pm_dvec3 
 		for (int b = 0; b < nxobj && !own; b++)
 			own = xobj[b] == P->obj && pm_ddot(P->N, n) >= SMOOTH_COS;
 		P->unseen = P->solid && !own && pm_ddot(P->N, xo) - P->d < -eps;
+		if (alone) {
+			P->nr = P->nfc = P->nf = 0;
+			P->f0 = sc->nbl;
+			continue;
+		}
 		if (!P->unseen && P->lit && !pyramid(sc, P, xo, eps))
 			return 0;
 		if (P->unseen || !P->lit)
@@ -1368,15 +1383,10 @@ weights(const pm_polyindex *pi, pm_vec3 x, pm_vec3 n,
 			break;
 		P->xon = fabs(P->d) <= eps && inside(sc, P, pm_dv3(0, 0, 0), eps, 1);
 		P->unseen = 0;
-		P->convex = pm_poly_convex(sc->cv + P->v0, P->nv, P->N);
+		P->convex = 0;
 		P->nfc = P->ndyn = 0;
 		P->adyn = 0;
 		P->lit = 0;
-		/* 2 eps: a crossing within eps of B counts (seen()), and a
-		 * photon lies within eps of its polygon. */
-		pm_sight_box(sc->cv + P->v0, P->nv, xo, 2 * eps, &sc->sg[a]);
-		for (int j = 0; j < na && !P->lit; j++)
-			P->lit = facing(P, sc->psi[j], sc->c[j], nd) > 0;
 	}
 	if (sc->ng == 1) {
 		one_polygon(sc, pos, xd, nd, h, eps, w, &z);
@@ -1384,6 +1394,16 @@ weights(const pm_polyindex *pi, pm_vec3 x, pm_vec3 n,
 	}
 	if (!groups(sc, pi->patch, nd))
 		goto out;
+	/* What the pair tests need (none, where one sheet is all there is). */
+	for (int a = 0; a < sc->ng && !one_sheet(sc); a++) {
+		cpoly *P = &sc->g[a];
+		P->convex = pm_poly_convex(sc->cv + P->v0, P->nv, P->N);
+		/* 2 eps: a crossing within eps of B counts (seen()), and a
+		 * photon lies within eps of its polygon. */
+		pm_sight_box(sc->cv + P->v0, P->nv, xo, 2 * eps, &sc->sg[a]);
+		for (int j = 0; j < na && !P->lit; j++)
+			P->lit = facing(P, sc->psi[j], sc->c[j], nd) > 0;
+	}
 	if (sc->ng > 1) {
 		if (!pair_lists(sc, pi->convex, xo, nd, eps, &xf0, &nxf))
 			goto out;
