@@ -157,8 +157,8 @@ struct pm_comp_scratch {
 	pm_dvec3 *pyr;         /* one polygon's pyramid from x' (pyramid()) */
 	double *pl;            /* the polygons' planes, one array per number
 	                          (N.x, N.y, N.z, d, N . x' - d), and ... */
-	double *t;             /* ... each plane's N . c - d for one centre c,
-	                          and one plane's for every centre */
+	double *t;             /* the groups' keys while they are made; then
+	                          N . Psi of one photon's candidates (weights()) */
 	int plcap, tcap;
 	int npyr, pyrcap;
 	cgroup *gr;            /* groups, and past ng tentative ones */
@@ -424,34 +424,46 @@ seen(const pm_comp_scratch *sc, const cpoly *P, pm_dvec3 xo, pm_dvec3 y, double 
 	return 1;
 }
 
+/* 1 if p lies in B's box grown by tol: inside()'s first test, made before
+ * the call where most points miss (the fates of sample points). */
+static inline int
+in_box(const cpoly *B, pm_dvec3 p, double tol)
+{
+	return !(p.x < B->lo[0] - tol || p.x > B->hi[0] + tol || p.y < B->lo[1] - tol ||
+	         p.y > B->hi[1] + tol || p.z < B->lo[2] - tol || p.z > B->hi[2] + tol);
+}
+
 /* The fate of the backward ray from y toward psi through the cube: -1 if it
  * meets none of the polygons cand[0..nc-1] first but the front of a wall
  * across an edge (or leaves the cube), else which object it meets first and
  * from which side. A hit at distance 0 (a face resting on y's surface) counts; a hit
- * within eps of the polygon's edge does not (the next polygon of a mesh). */
+ * within eps of the polygon's edge does not (the next polygon of a mesh).
+ * dn, if not NULL, holds each candidate's N . psi (many points, one psi). */
 static int
-fate(const pm_comp_scratch *sc, const int *cand, int nc, pm_dvec3 y, pm_dvec3 psi, double eps)
+fate(const pm_comp_scratch *sc, const int *cand, const double *dn, int nc, pm_dvec3 y,
+     pm_dvec3 psi, double eps)
 {
 	double best = INFINITY;
 	int f = -1;
 
 	for (int i = 0; i < nc; i++) {
 		const cpoly *B = &sc->g[IDX(cand[i])];
-		double dn = pm_ddot(B->N, psi), gap = B->d - pm_ddot(B->N, y), t;
-		if (fabs(dn) < 1e-9)
+		double d = dn ? dn[i] : pm_ddot(B->N, psi), gap = B->d - pm_ddot(B->N, y), t;
+		if (fabs(d) < 1e-9)
 			continue;
-		t = gap / dn;
+		t = gap / d;
 		if (t < 0) {
 			if (fabs(gap) > eps)
 				continue;
 			t = 0;
 		}
-		if (t >= best || !inside(sc, B, pm_dadd(y, pm_dscale(psi, t)), eps, 0))
+		pm_dvec3 p = pm_dadd(y, pm_dscale(psi, t));
+		if (t >= best || !in_box(B, p, eps) || !inside(sc, B, p, eps, 0))
 			continue;
 		best = t;
 		/* The front of a wall across an edge is where light comes from,
 		 * as it is beyond the cube. */
-		f = (cand[i] & MATTER) && dn < 0 ? -1 : 2 * B->obj + (dn > 0);
+		f = (cand[i] & MATTER) && d < 0 ? -1 : 2 * B->obj + (d > 0);
 	}
 	return f;
 }
@@ -1451,7 +1463,7 @@ weights(const pm_polyindex *pi, pm_vec3 x, pm_vec3 n,
 		 * fates, facing all of them: which one holds it does not matter. */
 		if (nm == 1 && sc->gr[sc->gm[0]].simple &&
 		    pm_ddot(psi, sc->gr[sc->gm[0]].M) > sc->gr[sc->gm[0]].sina + 1e-9) {
-			sc->fx[j] = fate(sc, sc->bl + xf0, nxf, pm_dv3(0, 0, 0), psi, eps);
+			sc->fx[j] = fate(sc, sc->bl + xf0, NULL, nxf, pm_dv3(0, 0, 0), psi, eps);
 			if (sc->fx[j] != -1)
 				z.hidden++;
 			else
@@ -1495,8 +1507,8 @@ weights(const pm_polyindex *pi, pm_vec3 x, pm_vec3 n,
 			z.hidden++;
 			continue;
 		}
-		sc->fx[j] = fate(sc, sc->bl + xf0, nxf, pm_dv3(0, 0, 0), psi, eps);
-		fy = fate(sc, sc->bl + P->f0, P->nf, r, psi, eps);
+		sc->fx[j] = fate(sc, sc->bl + xf0, NULL, nxf, pm_dv3(0, 0, 0), psi, eps);
+		fy = fate(sc, sc->bl + P->f0, NULL, P->nf, r, psi, eps);
 		if (fy != sc->fx[j] || (P->nr > 0 && !seen(sc, P, xo, r, eps))) {
 			z.hidden++;
 			continue;
@@ -1507,6 +1519,7 @@ weights(const pm_polyindex *pi, pm_vec3 x, pm_vec3 n,
 	/* Eq. 4 over what counts, eq. 2 and 3: Phi_p / A_p (Psi_p . N). */
 	double thr = PM_COMP_SKIP_REL * 4 * h * h;
 	int *cand = sc->bl + sc->nbl;
+	double *dnv = sc->t;
 	for (int j = 0; j < na; j++) {
 		int own = sc->own[j];
 		double A = 0, c = sc->c[j];
@@ -1574,8 +1587,10 @@ weights(const pm_polyindex *pi, pm_vec3 x, pm_vec3 n,
 					continue;
 				}
 				int hit = 0;
+				for (int b = 0; b < nc && P->ndyn > 0; b++)
+					dnv[b] = pm_ddot(sc->g[IDX(cand[b])].N, psi);
 				for (int t = P->s0; t < P->s0 + P->ndyn && nc > 0; t++)
-					hit += fate(sc, cand, nc, sc->sp[t], psi, eps) == sc->fx[j];
+					hit += fate(sc, cand, dnv, nc, sc->sp[t], psi, eps) == sc->fx[j];
 				for (int t = P->s0 + P->ndyn; t < P->s0 + P->ns; t++)
 					hit += sc->sf[t] == sc->fx[j];
 				/* An unsampled polygon has no cells (ncell 0): hit is 0 there,
