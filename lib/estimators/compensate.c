@@ -491,10 +491,13 @@ reach(const pm_comp_scratch *sc, const cpoly *P, const cpoly *B, pm_dvec3 psi, d
 		} else
 			any = 1;
 		v = pm_dadd(v, pm_dscale(psi, t > 0 ? t : 0));
-		for (int a = 0; a < 3; a++) {
-			lo[a] = dmin(lo[a], comp(v, a));
-			hi[a] = dmax(hi[a], comp(v, a));
-		}
+		/* Spelt out per axis: comp()'s branches cost more than the rest. */
+		lo[0] = dmin(lo[0], v.x);
+		hi[0] = dmax(hi[0], v.x);
+		lo[1] = dmin(lo[1], v.y);
+		hi[1] = dmax(hi[1], v.y);
+		lo[2] = dmin(lo[2], v.z);
+		hi[2] = dmax(hi[2], v.z);
 	}
 	if (!any)
 		return 0;
