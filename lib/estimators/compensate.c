@@ -157,8 +157,7 @@ struct pm_comp_scratch {
 	pm_dvec3 *pyr;         /* one polygon's pyramid from x' (pyramid()) */
 	double *pl;            /* the polygons' planes, one array per number
 	                          (N.x, N.y, N.z, d, N . x' - d), and ... */
-	double *t;             /* the groups' keys while they are made; then
-	                          N . Psi of one photon's candidates (weights()) */
+	double *t;             /* the groups' keys while they are made */
 	int plcap, tcap;
 	int npyr, pyrcap;
 	cgroup *gr;            /* groups, and past ng tentative ones */
@@ -437,18 +436,16 @@ in_box(const cpoly *B, pm_dvec3 p, double tol)
  * meets none of the polygons cand[0..nc-1] first but the front of a wall
  * across an edge (or leaves the cube), else which object it meets first and
  * from which side. A hit at distance 0 (a face resting on y's surface) counts; a hit
- * within eps of the polygon's edge does not (the next polygon of a mesh).
- * dn, if not NULL, holds each candidate's N . psi (many points, one psi). */
+ * within eps of the polygon's edge does not (the next polygon of a mesh). */
 static int
-fate(const pm_comp_scratch *sc, const int *cand, const double *dn, int nc, pm_dvec3 y,
-     pm_dvec3 psi, double eps)
+fate(const pm_comp_scratch *sc, const int *cand, int nc, pm_dvec3 y, pm_dvec3 psi, double eps)
 {
 	double best = INFINITY;
 	int f = -1;
 
 	for (int i = 0; i < nc; i++) {
 		const cpoly *B = &sc->g[IDX(cand[i])];
-		double d = dn ? dn[i] : pm_ddot(B->N, psi), gap = B->d - pm_ddot(B->N, y), t;
+		double d = pm_ddot(B->N, psi), gap = B->d - pm_ddot(B->N, y), t;
 		if (fabs(d) < 1e-9)
 			continue;
 		t = gap / d;
@@ -466,6 +463,48 @@ fate(const pm_comp_scratch *sc, const int *cand, const double *dn, int nc, pm_dv
 		f = (cand[i] & MATTER) && d < 0 ? -1 : 2 * B->obj + (d > 0);
 	}
 	return f;
+}
+
+/* How many of P's dynamic sample points have fate fx along psi: fate()
+ * for each, taken candidate by candidate over all the points (each point's
+ * nearest hit so far kept as fate() keeps it, so the answers are fate()'s),
+ * which keeps one plane in hand and lets neighbouring points' tests go the
+ * same way. */
+static int
+fates_hit(const pm_comp_scratch *sc, const cpoly *P, const int *cand, int nc, pm_dvec3 psi,
+          double eps, int fx)
+{
+	double best[GRID * GRID];
+	int f[GRID * GRID], hit = 0, n = P->ndyn;
+	const pm_dvec3 *y = sc->sp + P->s0;
+
+	for (int s = 0; s < n; s++) {
+		best[s] = INFINITY;
+		f[s] = -1;
+	}
+	for (int i = 0; i < nc; i++) {
+		const cpoly *B = &sc->g[IDX(cand[i])];
+		double d = pm_ddot(B->N, psi);
+		if (fabs(d) < 1e-9)
+			continue;
+		int fb = (cand[i] & MATTER) && d < 0 ? -1 : 2 * B->obj + (d > 0);
+		for (int s = 0; s < n; s++) {
+			double gap = B->d - pm_ddot(B->N, y[s]), t = gap / d;
+			if (t < 0) {
+				if (fabs(gap) > eps)
+					continue;
+				t = 0;
+			}
+			pm_dvec3 p = pm_dadd(y[s], pm_dscale(psi, t));
+			if (t >= best[s] || !in_box(B, p, eps) || !inside(sc, B, p, eps, 0))
+				continue;
+			best[s] = t;
+			f[s] = fb;
+		}
+	}
+	for (int s = 0; s < n; s++)
+		hit += f[s] == fx;
+	return hit;
 }
 
 /* 1 if a backward ray along psi from some point of P may meet B: the box
@@ -1466,7 +1505,7 @@ weights(const pm_polyindex *pi, pm_vec3 x, pm_vec3 n,
 		 * fates, facing all of them: which one holds it does not matter. */
 		if (nm == 1 && sc->gr[sc->gm[0]].simple &&
 		    pm_ddot(psi, sc->gr[sc->gm[0]].M) > sc->gr[sc->gm[0]].sina + 1e-9) {
-			sc->fx[j] = fate(sc, sc->bl + xf0, NULL, nxf, pm_dv3(0, 0, 0), psi, eps);
+			sc->fx[j] = fate(sc, sc->bl + xf0, nxf, pm_dv3(0, 0, 0), psi, eps);
 			if (sc->fx[j] != -1)
 				z.hidden++;
 			else
@@ -1510,8 +1549,8 @@ weights(const pm_polyindex *pi, pm_vec3 x, pm_vec3 n,
 			z.hidden++;
 			continue;
 		}
-		sc->fx[j] = fate(sc, sc->bl + xf0, NULL, nxf, pm_dv3(0, 0, 0), psi, eps);
-		fy = fate(sc, sc->bl + P->f0, NULL, P->nf, r, psi, eps);
+		sc->fx[j] = fate(sc, sc->bl + xf0, nxf, pm_dv3(0, 0, 0), psi, eps);
+		fy = fate(sc, sc->bl + P->f0, P->nf, r, psi, eps);
 		if (fy != sc->fx[j] || (P->nr > 0 && !seen(sc, P, xo, r, eps))) {
 			z.hidden++;
 			continue;
@@ -1522,7 +1561,6 @@ weights(const pm_polyindex *pi, pm_vec3 x, pm_vec3 n,
 	/* Eq. 4 over what counts, eq. 2 and 3: Phi_p / A_p (Psi_p . N). */
 	double thr = PM_COMP_SKIP_REL * 4 * h * h;
 	int *cand = sc->bl + sc->nbl;
-	double *dnv = sc->t;
 	for (int j = 0; j < na; j++) {
 		int own = sc->own[j];
 		double A = 0, c = sc->c[j];
@@ -1589,11 +1627,7 @@ weights(const pm_polyindex *pi, pm_vec3 x, pm_vec3 n,
 					A += f * dmax(0, s);
 					continue;
 				}
-				int hit = 0;
-				for (int b = 0; b < nc && P->ndyn > 0; b++)
-					dnv[b] = pm_ddot(sc->g[IDX(cand[b])].N, psi);
-				for (int t = P->s0; t < P->s0 + P->ndyn && nc > 0; t++)
-					hit += fate(sc, cand, dnv, nc, sc->sp[t], psi, eps) == sc->fx[j];
+				int hit = nc > 0 ? fates_hit(sc, P, cand, nc, psi, eps, sc->fx[j]) : 0;
 				for (int t = P->s0 + P->ndyn; t < P->s0 + P->ns; t++)
 					hit += sc->sf[t] == sc->fx[j];
 				/* An unsampled polygon has no cells (ncell 0): hit is 0 there,
