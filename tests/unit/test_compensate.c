@@ -1462,6 +1462,66 @@ TEST(floor_twice_under_many_groups)
 	tp_free(&p);
 }
 
+/* A floor as grid x grid quads of one object (one polygon, or one flat
+ * sheet, in a small cube), and with under set a small triangle of another
+ * object just under it, in the cube but hidden from x' by the floor. */
+static void
+floor_over(tscene *t, int grid, int under)
+{
+	ts_init(t);
+	int o = ts_object(t, 0, 0);
+	for (int i = 0; i < grid; i++)
+		for (int j = 0; j < grid; j++)
+			ts_rect(t, o, pm_v3((float)(-1 + 2.0 * i / grid), (float)(-1 + 2.0 * j / grid), 0),
+			        pm_v3((float)(2.0 / grid), 0, 0), pm_v3(0, (float)(2.0 / grid), 0));
+	if (under) {
+		pm_vec3 v[3] = {{-0.05f, -0.05f, -0.02f}, {0.05f, -0.05f, -0.02f}, {0, 0.05f, -0.02f}};
+		ts_poly(t, ts_object(t, 0, 0), 3, v);
+	}
+}
+
+/* The short paths of pm_comp_weights (a cube of one polygon; a cube of one
+ * sheet and nothing else) against the general one: the same floor with a
+ * triangle under it that adds no target area (x' does not see it) takes
+ * the general path, and every photon's weight must be the same, to the
+ * rounding of summing a sheet's facets in another order. */
+TEST(short_paths_match_the_general_one)
+{
+	static tscene t1, t2;
+	static double w1[K], w2[K];
+	for (int grid = 1; grid <= 8; grid += 7) {
+		tphotons p = {0};
+		pm_rng r = pm_rng_seed(21, (uint64_t)grid);
+		floor_over(&t1, grid, 0);
+		floor_over(&t2, grid, 1);
+		p.flux = 1e-3;
+		for (int i = 0; i < 4000; i++)
+			tp_rect(&p, &t1, (int)(rnd(&r) * grid * grid) % (grid * grid), 1,
+			        pm_sample_cosine(UP, pm_rng_f(&r), pm_rng_f(&r)), &r, 0);
+		pm_polyindex *p1 = index_of(&t1), *p2 = index_of(&t2);
+		pm_comp_scratch *sc = pm_comp_scratch_new(K);
+		for (int q = 0; q < 20; q++) {
+			pm_vec3 x = pm_v3((float)(0.04 * rnd(&r) - 0.02), (float)(0.04 * rnd(&r) - 0.02), 0);
+			double s1 = 0;
+			pm_comp_stats st1, st2;
+			int n = weigh_twice(&p, x, K, p1, p2, sc, w1, w2, &st1, &st2), same = 1;
+			for (int a = 0; a < n; a++) {
+				s1 += w1[a];
+				same &= fabs(w1[a] - w2[a]) <= 1e-12 * fabs(w1[a]);
+			}
+			CHECKF((grid == 1 ? st1.polys == 1 : st1.polys > 1) && st2.polys == st1.polys + 1,
+			       "grid %d, query %d: %d, %d polygons", grid, q, st1.polys, st2.polys);
+			CHECKF(s1 > 0 && same && st1.hidden == st2.hidden && st1.skipped == st2.skipped,
+			       "grid %d, query %d: weights differ (sum %.12g), hidden %d, %d", grid, q, s1,
+			       st1.hidden, st2.hidden);
+		}
+		pm_comp_scratch_free(sc);
+		pm_polyindex_free(p1);
+		pm_polyindex_free(p2);
+		tp_free(&p);
+	}
+}
+
 int
 main(void)
 {
@@ -1486,5 +1546,6 @@ main(void)
 	RUN(tessellated_floor_is_one_quad);
 	RUN(curved_sheet_parallel_beam);
 	RUN(floor_twice_under_many_groups);
+	RUN(short_paths_match_the_general_one);
 	return check_done();
 }
