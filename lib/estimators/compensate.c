@@ -390,9 +390,10 @@ inside(const pm_comp_scratch *sc, const cpoly *P, pm_dvec3 p, double tol, int ed
 		double eu = iu - ju, ew = iw - jw;
 		if ((iw > pw) != (jw > pw) && pu < eu * (pw - iw) / ew + iu)
 			in = !in;
-		/* Within tu of the edge only inside its box grown by tu. */
-		if (pu < dmin(iu, ju) - tu || pu > dmax(iu, ju) + tu ||
-		    pw < dmin(iw, jw) - tu || pw > dmax(iw, jw) + tu)
+		/* Within tu of the edge only inside its box grown by tu (the
+		 * vertices are finite: plain min and max). */
+		if (pu < (iu < ju ? iu : ju) - tu || pu > (iu > ju ? iu : ju) + tu ||
+		    pw < (iw < jw ? iw : jw) - tu || pw > (iw > jw ? iw : jw) + tu)
 			continue;
 		double ru = pu - ju, rw = pw - jw, ee = eu * eu + ew * ew;
 		double t = ee > 0 ? (ru * eu + rw * ew) / ee : 0;
@@ -489,7 +490,12 @@ fates_hit(const pm_comp_scratch *sc, const cpoly *P, const int *cand, int nc, pm
 			continue;
 		int fb = (cand[i] & MATTER) && d < 0 ? -1 : 2 * B->obj + (d > 0);
 		for (int s = 0; s < n; s++) {
-			double gap = B->d - pm_ddot(B->N, y[s]), t = gap / d;
+			double gap = B->d - pm_ddot(B->N, y[s]), t;
+			/* Behind the point beyond eps (t < 0 for sure, as |t| >= |gap|):
+			 * no division needed to say so. */
+			if ((gap < 0) != (d < 0) && fabs(gap) > eps)
+				continue;
+			t = gap / d;
 			if (t < 0) {
 				if (fabs(gap) > eps)
 					continue;
