@@ -433,6 +433,29 @@ in_box(const cpoly *B, pm_dvec3 p, double tol)
 	         p.y > B->hi[1] + tol || p.z < B->lo[2] - tol || p.z > B->hi[2] + tol);
 }
 
+/* seen() for n points y on P at once, blocker by blocker (x's side of each
+ * plane worked out once): vis[i] = 1 if x' sees y[i]. */
+static void
+seen_many(const pm_comp_scratch *sc, const cpoly *P, pm_dvec3 xo, const pm_dvec3 *y, int n,
+          double eps, unsigned char *vis)
+{
+	for (int s = 0; s < n; s++)
+		vis[s] = 1;
+	for (int i = 0; i < P->nr; i++) {
+		const cpoly *B = &sc->g[sc->bl[P->r0 + i]];
+		double sx = pm_ddot(B->N, xo) - B->d;
+		if (fabs(sx) <= eps)
+			continue;
+		for (int s = 0; s < n; s++) {
+			double sy = pm_ddot(B->N, y[s]) - B->d;
+			if (!vis[s] || fabs(sy) <= eps || (sx > 0) == (sy > 0))
+				continue;
+			if (inside(sc, B, pm_dadd(xo, pm_dscale(pm_dsub(y[s], xo), sx / (sx - sy))), eps, 1))
+				vis[s] = 0;
+		}
+	}
+}
+
 /* The fate of the backward ray from y toward psi through the cube: -1 if it
  * meets none of the polygons cand[0..nc-1] first but the front of a wall
  * across an edge (or leaves the cube), else which object it meets first and
@@ -536,13 +559,14 @@ reach(const pm_comp_scratch *sc, const cpoly *P, const cpoly *B, pm_dvec3 psi, d
 		} else
 			any = 1;
 		v = pm_dadd(v, pm_dscale(psi, t > 0 ? t : 0));
-		/* Spelt out per axis: comp()'s branches cost more than the rest. */
-		lo[0] = dmin(lo[0], v.x);
-		hi[0] = dmax(hi[0], v.x);
-		lo[1] = dmin(lo[1], v.y);
-		hi[1] = dmax(hi[1], v.y);
-		lo[2] = dmin(lo[2], v.z);
-		hi[2] = dmax(hi[2], v.z);
+		/* Spelt out per axis (comp()'s branches cost more than the
+		 * rest), plain min and max: v is finite. */
+		lo[0] = v.x < lo[0] ? v.x : lo[0];
+		hi[0] = v.x > hi[0] ? v.x : hi[0];
+		lo[1] = v.y < lo[1] ? v.y : lo[1];
+		hi[1] = v.y > hi[1] ? v.y : hi[1];
+		lo[2] = v.z < lo[2] ? v.z : lo[2];
+		hi[2] = v.z > hi[2] ? v.z : hi[2];
 	}
 	if (!any)
 		return 0;
@@ -1241,9 +1265,11 @@ sample(pm_comp_scratch *sc, cpoly *P, pm_dvec3 xo, double h, double eps)
 	 * same, so areas are counts times one cell. */
 	double cell = P->A / kept;
 	int nopen = 0, ncov = 0;
+	unsigned char vis[GRID * GRID];
+	seen_many(sc, P, xo, sc->sp + P->s0, kept, eps, vis);
 	for (int i = P->s0; i < P->s0 + kept; i++) {
 		int f = -1;
-		if (!seen(sc, P, xo, sc->sp[i], eps))
+		if (!vis[i - P->s0])
 			continue;
 		/* Covered by a polygon on P's plane: a backward ray meets it at
 		 * once, whatever its direction. */
