@@ -456,30 +456,47 @@ seen_many(const pm_comp_scratch *sc, const cpoly *P, pm_dvec3 xo, const pm_dvec3
 	}
 }
 
+/* fate()'s test of one polygon B (d = N_B . psi, not near 0): 1 if the
+ * backward ray from y along psi meets it nearer than best, at distance *t.
+ * A hit at distance 0 (a face resting on y's surface) counts; a hit
+ * within eps of the polygon's edge does not (the next polygon of a mesh). */
+static inline int
+meets(const pm_comp_scratch *sc, const cpoly *B, double d, pm_dvec3 y, pm_dvec3 psi, double eps,
+      double best, double *t)
+{
+	double gap = B->d - pm_ddot(B->N, y), u;
+
+	/* Behind y beyond eps: u < 0 for sure (gap and d differ in sign, and
+	 * |gap| > eps keeps u from rounding to 0), with no division. */
+	if ((gap < 0) != (d < 0) && fabs(gap) > eps)
+		return 0;
+	u = gap / d;
+	if (u < 0) {
+		if (fabs(gap) > eps)
+			return 0;
+		u = 0;
+	}
+	pm_dvec3 p = pm_dadd(y, pm_dscale(psi, u));
+	if (u >= best || !in_box(B, p, eps) || !inside(sc, B, p, eps, 0))
+		return 0;
+	*t = u;
+	return 1;
+}
+
 /* The fate of the backward ray from y toward psi through the cube: -1 if it
  * meets none of the polygons cand[0..nc-1] first but the front of a wall
  * across an edge (or leaves the cube), else which object it meets first and
- * from which side. A hit at distance 0 (a face resting on y's surface) counts; a hit
- * within eps of the polygon's edge does not (the next polygon of a mesh). */
+ * from which side, by meets(). */
 static int
 fate(const pm_comp_scratch *sc, const int *cand, int nc, pm_dvec3 y, pm_dvec3 psi, double eps)
 {
-	double best = INFINITY;
+	double best = INFINITY, t;
 	int f = -1;
 
 	for (int i = 0; i < nc; i++) {
 		const cpoly *B = &sc->g[IDX(cand[i])];
-		double d = pm_ddot(B->N, psi), gap = B->d - pm_ddot(B->N, y), t;
-		if (fabs(d) < 1e-9)
-			continue;
-		t = gap / d;
-		if (t < 0) {
-			if (fabs(gap) > eps)
-				continue;
-			t = 0;
-		}
-		pm_dvec3 p = pm_dadd(y, pm_dscale(psi, t));
-		if (t >= best || !in_box(B, p, eps) || !inside(sc, B, p, eps, 0))
+		double d = pm_ddot(B->N, psi);
+		if (fabs(d) < 1e-9 || !meets(sc, B, d, y, psi, eps, best, &t))
 			continue;
 		best = t;
 		/* The front of a wall across an edge is where light comes from,
@@ -513,22 +530,11 @@ fates_hit(const pm_comp_scratch *sc, const cpoly *P, const int *cand, int nc, pm
 			continue;
 		int fb = (cand[i] & MATTER) && d < 0 ? -1 : 2 * B->obj + (d > 0);
 		for (int s = 0; s < n; s++) {
-			double gap = B->d - pm_ddot(B->N, y[s]), t;
-			/* Behind the point beyond eps (t < 0 for sure, as |t| >= |gap|):
-			 * no division needed to say so. */
-			if ((gap < 0) != (d < 0) && fabs(gap) > eps)
-				continue;
-			t = gap / d;
-			if (t < 0) {
-				if (fabs(gap) > eps)
-					continue;
-				t = 0;
+			double t;
+			if (meets(sc, B, d, y[s], psi, eps, best[s], &t)) {
+				best[s] = t;
+				f[s] = fb;
 			}
-			pm_dvec3 p = pm_dadd(y[s], pm_dscale(psi, t));
-			if (t >= best[s] || !in_box(B, p, eps) || !inside(sc, B, p, eps, 0))
-				continue;
-			best[s] = t;
-			f[s] = fb;
 		}
 	}
 	for (int s = 0; s < n; s++)
