@@ -10,7 +10,9 @@
  * which can hide which, a group whose box is out of reach passed over whole,
  * and in a cube of many polygons only pairs that x' sees in one direction
  * (sight.h) tested (on a rough mesh, many groups, the pairs are the cost:
- * bench/compcost.sh).
+ * bench/compcost.sh). A polygon that many may hide stops its walk there
+ * and keeps no list: what x' sees of it comes from segments through a tree
+ * of the cube's polygons (boxtree.h, seen_cast()).
  * Only polygons that something can hide get sample points, and only their
  * samples cost work per photon; a photon on a sheet nothing touches costs a
  * slab test and a dot product. All geometry is double and relative to x. */
@@ -23,6 +25,7 @@
 
 #include "base/grow.h"
 #include "optics/bsdf.h"
+#include "estimators/boxtree.h"
 #include "estimators/clip.h"
 #include "estimators/overlap.h"
 #include "estimators/sight.h"
@@ -74,6 +77,14 @@
  * query on a sheet of thousands of facets returns mostly the polygon's own
  * sheet, which is never on its list (dense: two thirds of an estimate). */
 #define FEW_GROUPS 8
+/* A polygon of a cube of SIGHT_MIN polygons or more that this many others
+ * may hide (a rough mesh, where each facet has hundreds) keeps no list:
+ * its pair walk stops at the CAST_AT-th, and what x' sees of it is found
+ * by segments through a tree of the cube's polygons (seen_cast()), asking
+ * of each polygon crossed what the walk would have: the same answer, with
+ * work that grows with the points, not the pairs. */
+#define CAST_AT 16
+int pm_comp_cast_at = CAST_AT;
 #define IDX(e) ((e) & (FRONT - 1))
 
 typedef struct cpoly {
@@ -92,6 +103,8 @@ typedef struct cpoly {
 	int xon;               /* x lies on it */
 	int xpar;              /* parallel to n */
 	int r0, nr;            /* polygons that may hide part of it from x' */
+	int cast;              /* ... not listed: nr is CAST_AT, seen_cast() asks */
+	int own;               /* x lies on its solid, as pair_lists() says */
 	int f0, nf;            /* polygons a backward ray from it may meet ... */
 	int nfc;               /* ... the first nfc lying on its plane */
 	int s0, ns;            /* sample points kept: the ndyn first, then
@@ -179,6 +192,12 @@ struct pm_comp_scratch {
 	int sgcap;
 	int *gmk, *gskip;      /* per group: gskip holds its test for P if gmk is stamp */
 	int gmkcap;
+	pm_boxtree tree;       /* the polygons' boxes, for seen_cast() ... */
+	double (*bb)[3];       /* ... their boxes' lo, then hi */
+	int bcap;
+	int tree_built;        /* ... made once an estimate, when first asked */
+	int pyr_of;            /* the polygon whose pyramid sc->pyr holds, or -1 */
+	const unsigned char *cvx;
 	int oom;
 	pm_comp_stats last;
 };
@@ -248,6 +267,8 @@ pm_comp_scratch_free(pm_comp_scratch *sc)
 	free(sc->gmk);
 	free(sc->gskip);
 	free(sc->sg);
+	pm_boxtree_free(&sc->tree);
+	free(sc->bb);
 	free(sc);
 }
 
@@ -406,19 +427,31 @@ inside(const pm_comp_scratch *sc, const cpoly *P, pm_dvec3 p, double tol, int ed
 	return in;
 }
 
-/* 1 if x' sees y: the segment between them crosses none of the polygons
- * that may hide part of P (y on P). Crossings within eps of a polygon's edge
- * count: a wall's edge is where it meets the floor, and the floor beyond
- * runs under it. */
-static int
-seen(const pm_comp_scratch *sc, const cpoly *P, pm_dvec3 xo, pm_dvec3 y, double eps)
+/* 1 if the segment from x' to y crosses polygon B, sx being N_B . x' - d_B.
+ * Crossings within eps of a polygon's edge count: a wall's edge is where it
+ * meets the floor, and the floor beyond runs under it. */
+static inline int
+crosses(const pm_comp_scratch *sc, const cpoly *B, pm_dvec3 xo, pm_dvec3 y, double sx, double eps)
 {
+	double sy = pm_ddot(B->N, y) - B->d;
+
+	if (fabs(sx) <= eps || fabs(sy) <= eps || (sx > 0) == (sy > 0))
+		return 0;
+	return inside(sc, B, pm_dadd(xo, pm_dscale(pm_dsub(y, xo), sx / (sx - sy))), eps, 1);
+}
+
+static int seen_cast(pm_comp_scratch *sc, const cpoly *P, pm_dvec3 xo, pm_dvec3 y, double eps);
+
+/* 1 if x' sees y: the segment between them crosses none of the polygons
+ * that may hide part of P (y on P). */
+static int
+seen(pm_comp_scratch *sc, const cpoly *P, pm_dvec3 xo, pm_dvec3 y, double eps)
+{
+	if (P->cast)
+		return seen_cast(sc, P, xo, y, eps);
 	for (int i = 0; i < P->nr; i++) {
 		const cpoly *B = &sc->g[sc->bl[P->r0 + i]];
-		double sx = pm_ddot(B->N, xo) - B->d, sy = pm_ddot(B->N, y) - B->d;
-		if (fabs(sx) <= eps || fabs(sy) <= eps || (sx > 0) == (sy > 0))
-			continue;
-		if (inside(sc, B, pm_dadd(xo, pm_dscale(pm_dsub(y, xo), sx / (sx - sy))), eps, 1))
+		if (crosses(sc, B, xo, y, pm_ddot(B->N, xo) - B->d, eps))
 			return 0;
 	}
 	return 1;
@@ -436,23 +469,19 @@ in_box(const cpoly *B, pm_dvec3 p, double tol)
 /* seen() for n points y on P at once, blocker by blocker (x's side of each
  * plane worked out once): vis[i] = 1 if x' sees y[i]. */
 static void
-seen_many(const pm_comp_scratch *sc, const cpoly *P, pm_dvec3 xo, const pm_dvec3 *y, int n,
+seen_many(pm_comp_scratch *sc, const cpoly *P, pm_dvec3 xo, const pm_dvec3 *y, int n,
           double eps, unsigned char *vis)
 {
 	for (int s = 0; s < n; s++)
-		vis[s] = 1;
-	for (int i = 0; i < P->nr; i++) {
+		vis[s] = P->cast ? seen_cast(sc, P, xo, y[s], eps) : 1;
+	for (int i = 0; i < P->nr && !P->cast; i++) {
 		const cpoly *B = &sc->g[sc->bl[P->r0 + i]];
 		double sx = pm_ddot(B->N, xo) - B->d;
 		if (fabs(sx) <= eps)
 			continue;
-		for (int s = 0; s < n; s++) {
-			double sy = pm_ddot(B->N, y[s]) - B->d;
-			if (!vis[s] || fabs(sy) <= eps || (sx > 0) == (sy > 0))
-				continue;
-			if (inside(sc, B, pm_dadd(xo, pm_dscale(pm_dsub(y[s], xo), sx / (sx - sy))), eps, 1))
+		for (int s = 0; s < n; s++)
+			if (vis[s] && crosses(sc, B, xo, y[s], sx, eps))
 				vis[s] = 0;
-		}
 	}
 }
 
@@ -626,8 +655,10 @@ pyramid(pm_comp_scratch *sc, const cpoly *P, pm_dvec3 xo, double eps)
 	pm_dvec3 c = pm_dv3(0, 0, 0);
 
 	sc->npyr = 0;
+	sc->pyr_of = -1;
 	if (!pm_grow((void **)&sc->pyr, &sc->pyrcap, 0, P->nv, sizeof *sc->pyr))
 		return 0;
+	sc->pyr_of = (int)(P - sc->g);
 	for (int i = 0; i < P->nv; i++)
 		c = pm_dadd(c, v[i]);
 	c = pm_dscale(c, 1.0 / P->nv);
@@ -997,6 +1028,64 @@ may_hide(const pm_comp_scratch *sc, const cpoly *P, int a, int b, const double *
 	return (sx > 0 ? lo < -eps : hi > eps) && between(sc, P, B, xo, eps, u);
 }
 
+typedef struct cast_ctx {
+	pm_comp_scratch *sc;
+	const cpoly *P;
+	pm_dvec3 xo, y;
+	double eps;
+} cast_ctx;
+
+/* pm_boxtree_segment's question for polygon b: 1 if it hides y from x',
+ * with seen()'s test, and is one that pair_lists() would have listed for P
+ * (asked only of the few the segment crosses). */
+static int
+hides(void *vq, int b)
+{
+	const cast_ctx *q = vq;
+	const pm_comp_scratch *sc = q->sc;
+	const cpoly *B = &sc->g[b], *P = q->P;
+	double eps = q->eps;
+
+	if (!crosses(sc, B, q->xo, q->y, pm_ddot(B->N, q->xo) - B->d, eps))
+		return 0;
+	return !skip_group(sc, sc->cvx, P, B->grp, sc->gr[P->grp].sheet ? P->grp : -1, q->xo, eps) &&
+	       may_hide(sc, P, (int)(P - sc->g), b, sc->pl, q->xo, eps, P->own);
+}
+
+/* seen() for a polygon with no list (CAST_AT): the polygons whose boxes
+ * (grown by 2 eps, past inside()'s eps) the segment from x' to y passes
+ * through, each asked hides(). P's pyramid is made again for
+ * may_hide() if another's is in hand. */
+static int
+seen_cast(pm_comp_scratch *sc, const cpoly *P, pm_dvec3 xo, pm_dvec3 y, double eps)
+{
+	cast_ctx q = {sc, P, xo, y, eps};
+
+	if (!sc->tree_built) {
+		int ng = sc->ng;
+		if (!pm_grow((void **)&sc->bb, &sc->bcap, 0, 2 * ng, sizeof *sc->bb)) {
+			sc->oom = 1;
+			return 1;
+		}
+		for (int b = 0; b < ng; b++)
+			for (int k = 0; k < 3; k++) {
+				sc->bb[b][k] = sc->g[b].lo[k];
+				sc->bb[ng + b][k] = sc->g[b].hi[k];
+			}
+		if (!pm_boxtree_build(&sc->tree, (const double (*)[3])sc->bb, (const double (*)[3])sc->bb + ng,
+		                      ng, 2 * eps)) {
+			sc->oom = 1;
+			return 1;
+		}
+		sc->tree_built = 1;
+	}
+	if (sc->pyr_of != (int)(P - sc->g) && !pyramid(sc, P, xo, eps)) {
+		sc->oom = 1;
+		return 1;
+	}
+	return !pm_boxtree_segment(&sc->tree, xo, y, hides, &q);
+}
+
 /* With few groups (FEW_GROUPS), asks each once whether it can hide part of
  * P (gskip, stamped st in gmk); if those that can hold fewer than
  * SIGHT_MIN polygons, lists them by may_hide() and returns 1, with no grid
@@ -1041,12 +1130,16 @@ pair_lists(pm_comp_scratch *sc, const unsigned char *cvx, pm_dvec3 xo, pm_dvec3 
            int *xf0, int *nxf)
 {
 	int ng = sc->ng, ngr = sc->ngr, follow = ngr <= FATE_MAX_GROUPS, grid = ng >= SIGHT_MIN;
+	int cast_at = pm_comp_cast_at < 9 ? 9 : pm_comp_cast_at;
 	/* One sheet is all the cube holds: it hides none of itself, and a ray
 	 * leaving it does not meet it again, so every polygon's lists are
 	 * empty (x's too, where x lies on it). */
 	int alone = one_sheet(sc);
 
 	sc->nbl = 0;
+	sc->tree_built = 0;
+	sc->pyr_of = -1;
+	sc->cvx = cvx;
 	if (!pm_grow((void **)&sc->pl, &sc->plcap, 0, ng, sizeof *sc->pl))
 		return 0;
 	if (!pm_grow((void **)&sc->cand, &sc->candcap, 0, ng, sizeof *sc->cand))
@@ -1083,6 +1176,8 @@ pair_lists(pm_comp_scratch *sc, const unsigned char *cvx, pm_dvec3 xo, pm_dvec3 
 		for (int b = 0; b < nxobj && !own; b++)
 			own = xobj[b] == P->obj && pm_ddot(P->N, n) >= SMOOTH_COS;
 		P->unseen = P->solid && !own && pm_ddot(P->N, xo) - P->d < -eps;
+		P->own = own;
+		P->cast = 0;
 		if (alone) {
 			P->nr = P->nfc = P->nf = 0;
 			P->f0 = sc->nbl;
@@ -1093,11 +1188,13 @@ pair_lists(pm_comp_scratch *sc, const unsigned char *cvx, pm_dvec3 xo, pm_dvec3 
 		if (P->unseen || !P->lit)
 			;
 		else if (!grid || sc->sg[a].face < 0) {
-			for (int G = 0; G < ngr; G++) {
+			/* In a cube for the grid, a walk that finds CAST_AT stops. */
+			int stop = grid ? cast_at : INT_MAX;
+			for (int G = 0; G < ngr && sc->nbl - P->r0 < stop; G++) {
 				const cgroup *Gr = &sc->gr[G];
 				if (skip_group(sc, cvx, P, G, sgrp, xo, eps))
 					continue;
-				for (int gi = Gr->p0; gi < Gr->p0 + Gr->np; gi++)
+				for (int gi = Gr->p0; gi < Gr->p0 + Gr->np && sc->nbl - P->r0 < stop; gi++)
 					if (may_hide(sc, P, a, sc->gp[gi], plsx, xo, eps, own))
 						push(sc, sc->gp[gi]);
 			}
@@ -1107,7 +1204,7 @@ pair_lists(pm_comp_scratch *sc, const unsigned char *cvx, pm_dvec3 xo, pm_dvec3 
 				return 0;
 			built = 1;
 			nc = pm_sight_grid_query(&sc->grid, ng, &sc->sg[a], sc->cand, sc->mark, st);
-			for (int k = 0; k < nc; k++) {
+			for (int k = 0; k < nc && sc->nbl - P->r0 < cast_at; k++) {
 				int b = sc->cand[k], G = sc->g[b].grp;
 				if (sc->gmk[G] != st) {
 					sc->gmk[G] = st;
@@ -1118,6 +1215,11 @@ pair_lists(pm_comp_scratch *sc, const unsigned char *cvx, pm_dvec3 xo, pm_dvec3 
 			}
 		}
 		P->nr = sc->nbl - P->r0;
+		if (grid && P->nr >= cast_at) {
+			P->cast = 1;
+			P->nr = cast_at;
+			sc->nbl = P->r0;
+		}
 		P->f0 = sc->nbl;
 		/* What lies on P's plane is listed even where fates are not
 		 * followed: a surface given twice, or a face resting on P, covers
@@ -1506,6 +1608,7 @@ weights(const pm_polyindex *pi, pm_vec3 x, pm_vec3 n,
 				if (!sample(sc, &sc->g[a], xo, h, eps))
 					goto out;
 				z.sampled++;
+				z.cast += sc->g[a].cast;
 			}
 	}
 	for (int G = 0; G < sc->ngr; G++) {

@@ -94,6 +94,8 @@ typedef struct pm_comp_stats {
 	                    polygon of the cube, unseen from x', another fate) */
 	int polys;       /* polygons with area in the cube */
 	int sampled;     /* of those, given sample points (something can hide part of it) */
+	int cast;        /* of those, with so many that may hide them that what x'
+	                    sees of them is found through a tree (pm_comp_cast_at) */
 	int closed;      /* 1 if the cube was closed (see above) */
 } pm_comp_stats;
 
@@ -115,6 +117,14 @@ void pm_comp_weights(const pm_polyindex *pi, pm_vec3 x, pm_vec3 n,
 void pm_comp_weights_cube(const pm_polyindex *pi, pm_vec3 x, pm_vec3 n,
                           const pm_vec3 *pos, const pm_vec3 *dir, int m, double h,
                           pm_comp_scratch *sc, double *w, pm_comp_stats *st);
+
+/* In a cube of 32 polygons or more, a polygon that this many others may
+ * hide from x' keeps no list of them: what x' sees of it is found by
+ * segments through a tree of the cube's polygons, with the same answer
+ * (compensate.c, CAST_AT). 16 unless changed; values below 9 count as 9
+ * (the sampling asks whether there are more than 8); INT_MAX keeps every
+ * list. For tests and benchmarks, set before any estimate runs. */
+extern int pm_comp_cast_at;
 
 /* The statistics of the last pm_estimate_compensated call with sc. */
 const pm_comp_stats *pm_comp_last(const pm_comp_scratch *sc);

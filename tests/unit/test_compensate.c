@@ -7,6 +7,7 @@
  * Most tests drive pm_comp_weights with a brute-force L-infinity search
  * written here, so they test this module alone; the last one runs the whole
  * pm_estimate_compensated (kd-tree, packed photons, BSDF) against it. */
+#include <limits.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -1408,19 +1409,19 @@ TEST(curved_sheet_parallel_beam)
  * and under x a cloud of 150 small triangles facing every way, each its own
  * patch: more groups in the cube than fates are followed for. */
 static void
-floor_under_cloud(tscene *t, int twice)
+floor_under_cloud(tscene *t, int twice, int ntri, double size)
 {
 	pm_rng r = pm_rng_seed(166, 2);
 	ts_init(t);
 	for (int i = 0; i < 1 + twice; i++)
 		ts_rect(t, ts_object(t, 0, 0), pm_v3(-1, -1, 0), pm_v3(2, 0, 0), pm_v3(0, 2, 0));
 	int cloud = ts_object(t, 0, 0);
-	for (int i = 0; i < 150; i++) {
+	for (int i = 0; i < ntri; i++) {
 		pm_vec3 c = pm_v3((float)(0.12 * rnd(&r) - 0.06), (float)(0.12 * rnd(&r) - 0.06),
 		                  (float)(0.01 + 0.07 * rnd(&r))), v[3];
 		for (int j = 0; j < 3; j++)
-			v[j] = pm_add(c, pm_v3((float)(0.02 * rnd(&r) - 0.01), (float)(0.02 * rnd(&r) - 0.01),
-			                       (float)(0.02 * rnd(&r) - 0.01)));
+			v[j] = pm_add(c, pm_v3((float)(size * rnd(&r) - 0.5 * size), (float)(size * rnd(&r) - 0.5 * size),
+			                       (float)(size * rnd(&r) - 0.5 * size)));
 		ts_poly(t, cloud, 3, v);
 	}
 }
@@ -1436,8 +1437,8 @@ TEST(floor_twice_under_many_groups)
 	tphotons p = {0};
 	pm_rng r = pm_rng_seed(7, 3);
 	double w1[K], w2[K];
-	floor_under_cloud(&t1, 0);
-	floor_under_cloud(&t2, 1);
+	floor_under_cloud(&t1, 0, 150, 0.02);
+	floor_under_cloud(&t2, 1, 150, 0.02);
 	p.flux = 1e-3;
 	for (int i = 0; i < 4000; i++)
 		tp_rect(&p, &t1, 0, 1, pm_sample_cosine(UP, pm_rng_f(&r), pm_rng_f(&r)), &r, 0);
@@ -1522,6 +1523,53 @@ TEST(short_paths_match_the_general_one)
 	}
 }
 
+/* A polygon of a large cube with many that may hide it keeps no list, and
+ * what x' sees of it is found through a tree (pm_comp_cast_at): the
+ * weights must be the very same as with every list kept, on a floor under
+ * a cloud of 60 triangles (fates followed) and of 150 (not followed), and
+ * the tree must have been asked. */
+TEST(tree_sees_what_the_lists_see)
+{
+	static tscene t;
+	static double w1[K], w2[K];
+	int casts = 0;
+	for (int ntri = 60; ntri <= 150; ntri += 90) {
+		tphotons p = {0};
+		pm_rng r = pm_rng_seed(33, (uint64_t)ntri);
+		floor_under_cloud(&t, 0, ntri, 0.06);
+		p.flux = 1e-3;
+		for (int i = 0; i < 4000; i++)
+			tp_rect(&p, &t, 0, 1, pm_sample_cosine(UP, pm_rng_f(&r), pm_rng_f(&r)), &r, 0);
+		pm_polyindex *pi = index_of(&t);
+		pm_comp_scratch *sc = pm_comp_scratch_new(K);
+		for (int q = 0; q < 20; q++) {
+			pm_vec3 x = pm_v3((float)(0.06 * rnd(&r) - 0.03), (float)(0.06 * rnd(&r) - 0.03), 0);
+			pm_comp_stats st1, st2;
+			pm_comp_cast_at = INT_MAX;
+			int n = weigh_twice(&p, x, K, pi, pi, sc, w1, w1, &st1, &st1), same = 1;
+			pm_comp_cast_at = 9;
+			weigh_twice(&p, x, K, pi, pi, sc, w2, w2, &st2, &st2);
+			double s1 = 0;
+			for (int a = 0; a < n; a++) {
+				s1 += w1[a];
+				same &= w1[a] == w2[a];
+			}
+			casts += st2.cast;
+			CHECKF(st1.cast == 0 && st1.polys >= 32, "cloud %d, query %d: %d polygons, %d cast",
+			       ntri, q, st1.polys, st1.cast);
+			CHECKF(s1 > 0 && same && st1.hidden == st2.hidden && st1.skipped == st2.skipped &&
+			       st1.sampled == st2.sampled,
+			       "cloud %d, query %d: weights differ (sum %.12g), hidden %d, %d", ntri, q, s1,
+			       st1.hidden, st2.hidden);
+		}
+		pm_comp_cast_at = 16;
+		pm_comp_scratch_free(sc);
+		pm_polyindex_free(pi);
+		tp_free(&p);
+	}
+	CHECKF(casts > 40, "only %d polygons went through the tree", casts);
+}
+
 int
 main(void)
 {
@@ -1547,5 +1595,6 @@ main(void)
 	RUN(curved_sheet_parallel_beam);
 	RUN(floor_twice_under_many_groups);
 	RUN(short_paths_match_the_general_one);
+	RUN(tree_sees_what_the_lists_see);
 	return check_done();
 }

@@ -1,0 +1,170 @@
+/* boxtree.c — a tree of boxes for segment queries (boxtree.h). */
+#include "estimators/boxtree.h"
+
+#include <stdlib.h>
+
+#include "base/grow.h"
+
+/* Deep enough for any tree of up to 2^60 boxes: every split halves. */
+#define STACK 64
+
+/* Puts items[lo .. hi) in order around their k-th smallest centre mid[]
+ * (those before k no larger, those after no smaller): a quickselect with
+ * the median of three as pivot, the same order for the same boxes. */
+static void
+select_kth(int *items, const double *mid, int lo, int hi, int k)
+{
+	while (hi - lo > 2) {
+		int a = items[lo], b = items[(lo + hi) / 2], c = items[hi - 1];
+		double ma = mid[a], mb = mid[b], mc = mid[c];
+		double p = ma < mb ? (mb < mc ? mb : ma < mc ? mc : ma) : (ma < mc ? ma : mb < mc ? mc : mb);
+		int i = lo, j = hi - 1;
+		while (i <= j) {
+			while (mid[items[i]] < p)
+				i++;
+			while (mid[items[j]] > p)
+				j--;
+			if (i <= j) {
+				int s = items[i];
+				items[i++] = items[j];
+				items[j--] = s;
+			}
+		}
+		if (k <= j)
+			hi = j + 1;
+		else if (k >= i)
+			lo = i;
+		else
+			return;
+	}
+	if (hi - lo == 2 && mid[items[lo]] > mid[items[lo + 1]]) {
+		int s = items[lo];
+		items[lo] = items[lo + 1];
+		items[lo + 1] = s;
+	}
+}
+
+/* Node v over items[first .. first + count): its box, and below it the
+ * halves split at the median centre along the axis the centres spread
+ * most. */
+static void
+build(pm_boxtree *t, const double (*lo)[3], const double (*hi)[3], double grow, int v, int first, int count)
+{
+	pm_boxtree_node *nd = &t->node[v];
+	double clo[3], chi[3];
+
+	for (int k = 0; k < 3; k++) {
+		nd->lo[k] = clo[k] = INFINITY;
+		nd->hi[k] = chi[k] = -INFINITY;
+	}
+	for (int i = first; i < first + count; i++) {
+		int b = t->item[i];
+		for (int k = 0; k < 3; k++) {
+			double c = 0.5 * (lo[b][k] + hi[b][k]);
+			nd->lo[k] = lo[b][k] < nd->lo[k] ? lo[b][k] : nd->lo[k];
+			nd->hi[k] = hi[b][k] > nd->hi[k] ? hi[b][k] : nd->hi[k];
+			clo[k] = c < clo[k] ? c : clo[k];
+			chi[k] = c > chi[k] ? c : chi[k];
+		}
+	}
+	for (int k = 0; k < 3; k++) {
+		nd->lo[k] -= grow;
+		nd->hi[k] += grow;
+	}
+	if (count <= PM_BOXTREE_LEAF) {
+		nd->first = first;
+		nd->count = count;
+		return;
+	}
+	int ax = chi[0] - clo[0] >= chi[1] - clo[1] && chi[0] - clo[0] >= chi[2] - clo[2] ? 0
+	         : chi[1] - clo[1] >= chi[2] - clo[2] ? 1 : 2;
+	for (int i = first; i < first + count; i++) {
+		int b = t->item[i];
+		t->mid[b] = 0.5 * (lo[b][ax] + hi[b][ax]);
+	}
+	int half = count / 2, c = t->nnode;
+	select_kth(t->item, t->mid, first, first + count, first + half);
+	t->nnode += 2;
+	nd->first = c;
+	nd->count = 0;
+	build(t, lo, hi, grow, c, first, half);
+	build(t, lo, hi, grow, c + 1, first + half, count - half);
+}
+
+int
+pm_boxtree_build(pm_boxtree *t, const double (*lo)[3], const double (*hi)[3], int n, double grow)
+{
+	t->nnode = 0;
+	if (n <= 0)
+		return 1;
+	if (!pm_grow((void **)&t->node, &t->nodecap, 0, 2 * n, sizeof *t->node) ||
+	    !pm_grow((void **)&t->item, &t->itemcap, 0, n, sizeof *t->item) ||
+	    !pm_grow((void **)&t->mid, &t->midcap, 0, n, sizeof *t->mid))
+		return 0;
+	for (int i = 0; i < n; i++)
+		t->item[i] = i;
+	t->nnode = 1;
+	build(t, lo, hi, grow, 0, 0, n);
+	return 1;
+}
+
+/* 1 if the segment a + s d, s in [0, 1], meets node box nd. */
+static inline int
+hits(const pm_boxtree_node *nd, const double a[3], const double d[3], const double inv[3])
+{
+	double s0 = 0, s1 = 1;
+
+	for (int k = 0; k < 3; k++) {
+		if (d[k] == 0) {
+			if (a[k] < nd->lo[k] || a[k] > nd->hi[k])
+				return 0;
+			continue;
+		}
+		double u = (nd->lo[k] - a[k]) * inv[k], v = (nd->hi[k] - a[k]) * inv[k];
+		if (u > v) {
+			double s = u;
+			u = v;
+			v = s;
+		}
+		s0 = u > s0 ? u : s0;
+		s1 = v < s1 ? v : s1;
+		if (s0 > s1)
+			return 0;
+	}
+	return 1;
+}
+
+int
+pm_boxtree_segment(const pm_boxtree *t, pm_dvec3 a, pm_dvec3 b, int (*f)(void *ctx, int i), void *ctx)
+{
+	double pa[3] = {a.x, a.y, a.z}, d[3] = {b.x - a.x, b.y - a.y, b.z - a.z}, inv[3];
+	int stack[STACK], sp = 0, r;
+
+	if (t->nnode == 0)
+		return 0;
+	for (int k = 0; k < 3; k++)
+		inv[k] = d[k] != 0 ? 1 / d[k] : 0;
+	stack[sp++] = 0;
+	while (sp > 0) {
+		const pm_boxtree_node *nd = &t->node[stack[--sp]];
+		if (!hits(nd, pa, d, inv))
+			continue;
+		if (nd->count == 0) {
+			stack[sp++] = nd->first + 1;
+			stack[sp++] = nd->first;
+			continue;
+		}
+		for (int i = nd->first; i < nd->first + nd->count; i++)
+			if ((r = f(ctx, t->item[i])) != 0)
+				return r;
+	}
+	return 0;
+}
+
+void
+pm_boxtree_free(pm_boxtree *t)
+{
+	free(t->node);
+	free(t->item);
+	free(t->mid);
+}

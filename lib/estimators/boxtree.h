@@ -1,0 +1,46 @@
+/* boxtree.h — a tree of axis-aligned boxes, to find the boxes a segment
+ * passes through without trying every one.
+ *
+ * The compensated estimate asks, for each sample point y on a polygon of
+ * its cube, whether the segment from x' to y crosses a polygon that may
+ * hide it. In a cube of thousands of facets (a rough or scanned mesh) that
+ * was a list per polygon, hundreds long, tried for every point: the cost
+ * grew with the square of the facets. The tree over the polygons' boxes
+ * brings each point's question down to the few boxes near its segment
+ * (compensate.c, seen_cast()). */
+#ifndef PM_BOXTREE_H
+#define PM_BOXTREE_H
+
+#include "base/vec.h"
+
+/* Boxes per leaf, at most. */
+#define PM_BOXTREE_LEAF 4
+
+typedef struct pm_boxtree_node {
+	double lo[3], hi[3];
+	int first, count;      /* a leaf: items [first, first + count); an inner
+	                          node: count 0, children first and first + 1 */
+} pm_boxtree_node;
+
+typedef struct pm_boxtree {
+	pm_boxtree_node *node;
+	int nnode, nodecap;
+	int *item;             /* box numbers, leaf by leaf */
+	int itemcap;
+	double *mid;           /* scratch: box centres while building */
+	int midcap;
+} pm_boxtree;
+
+/* Fills t with boxes lo[i], hi[i] (i < n, each lo <= hi, finite), each grown
+ * by grow on every side. t starts zeroed and is reused across calls; the
+ * tree's shape depends only on the boxes. 0 on a failed allocation. */
+int pm_boxtree_build(pm_boxtree *t, const double (*lo)[3], const double (*hi)[3], int n, double grow);
+
+/* Calls f(ctx, i) for every box i the segment a-b may pass through (every
+ * one it does, perhaps some more), until f returns nonzero; returns that
+ * value, or 0. */
+int pm_boxtree_segment(const pm_boxtree *t, pm_dvec3 a, pm_dvec3 b, int (*f)(void *ctx, int i), void *ctx);
+
+void pm_boxtree_free(pm_boxtree *t);
+
+#endif

@@ -1,0 +1,131 @@
+/* test_boxtree.c — the tree of boxes for segment queries
+ * (lib/estimators/boxtree.c) against a brute force of its own: a box that
+ * some point of the segment lies in (found by walking the segment in fine
+ * steps, grown as the tree grows it) must be reported, each box at most
+ * once; and a query stops where its callback says. */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "base/rng.h"
+#include "check.h"
+#include "estimators/boxtree.h"
+
+#define MAXN 600
+#define STEPS 4000
+
+typedef struct seen_set {
+	int count[MAXN];
+	int calls, stop_at;
+} seen_set;
+
+static int
+note(void *ctx, int i)
+{
+	seen_set *s = ctx;
+	s->count[i]++;
+	s->calls++;
+	return s->calls == s->stop_at ? 7 : 0;
+}
+
+static double
+u01(pm_rng *r)
+{
+	return (pm_rng_u32(r) + 0.5) / 4294967296.0;
+}
+
+/* 1 if a + t (b - a) lies in box i grown by g for one of STEPS + 1 even t. */
+static int
+walk_meets(pm_dvec3 a, pm_dvec3 b, const double lo[3], const double hi[3], double g)
+{
+	for (int s = 0; s <= STEPS; s++) {
+		double t = (double)s / STEPS, p[3] = {a.x + t * (b.x - a.x), a.y + t * (b.y - a.y), a.z + t * (b.z - a.z)};
+		if (p[0] >= lo[0] - g && p[0] <= hi[0] + g && p[1] >= lo[1] - g && p[1] <= hi[1] + g &&
+		    p[2] >= lo[2] - g && p[2] <= hi[2] + g)
+			return 1;
+	}
+	return 0;
+}
+
+TEST(segments_find_every_box_they_meet)
+{
+	static double lo[MAXN][3], hi[MAXN][3];
+	static seen_set s;
+	pm_boxtree t = {0};
+	pm_rng r = pm_rng_seed(5, 1);
+	int missed = 0, twice = 0, met = 0, reported = 0, n = 0, asked = 0;
+
+	for (int round = 0; round < 40; round++) {
+		n = round == 0 ? 1 : 1 + (int)(u01(&r) * (MAXN - 1));
+		/* Flat and thin boxes too (a polygon in an axis plane). */
+		for (int i = 0; i < n; i++)
+			for (int k = 0; k < 3; k++) {
+				double c = 2 * u01(&r) - 1, w = u01(&r) < 0.2 ? 0 : 0.2 * u01(&r);
+				lo[i][k] = c - w;
+				hi[i][k] = c + w;
+			}
+		double g = round % 2 ? 0.01 : 0;
+		CHECK(pm_boxtree_build(&t, (const double (*)[3])lo, (const double (*)[3])hi, n, g));
+		for (int q = 0; q < 25; q++) {
+			pm_dvec3 a = pm_dv3(2 * u01(&r) - 1, 2 * u01(&r) - 1, 2 * u01(&r) - 1), b;
+			b = pm_dv3(2 * u01(&r) - 1, 2 * u01(&r) - 1, 2 * u01(&r) - 1);
+			/* Along an axis, and a point, now and then. */
+			if (q % 5 == 1)
+				b = pm_dv3(a.x, a.y, b.z);
+			if (q % 5 == 2)
+				b = a;
+			memset(&s, 0, sizeof s);
+			CHECK(pm_boxtree_segment(&t, a, b, note, &s) == 0);
+			asked += n;
+			for (int i = 0; i < n; i++) {
+				int m = walk_meets(a, b, lo[i], hi[i], g);
+				met += m;
+				reported += s.count[i] > 0;
+				missed += m && s.count[i] == 0;
+				twice += s.count[i] > 1;
+			}
+		}
+	}
+	CHECKF(missed == 0 && twice == 0 && met > 500, "%d of %d boxes met missed, %d reported twice",
+	       missed, met, twice);
+	/* A tree that reported everything would pass the above: most boxes
+	 * are far from a segment (a leaf's four come together). */
+	CHECKF(reported < asked / 10, "%d reported of %d (%d met)", reported, asked, met);
+	pm_boxtree_free(&t);
+}
+
+TEST(query_stops_where_asked)
+{
+	static double lo[MAXN][3], hi[MAXN][3];
+	static seen_set s;
+	pm_boxtree t = {0};
+
+	/* 100 boxes in a row along x: a segment along the row meets them all. */
+	for (int i = 0; i < 100; i++) {
+		lo[i][0] = i;
+		hi[i][0] = i + 0.5;
+		lo[i][1] = lo[i][2] = -1;
+		hi[i][1] = hi[i][2] = 1;
+	}
+	CHECK(pm_boxtree_build(&t, (const double (*)[3])lo, (const double (*)[3])hi, 100, 0));
+	memset(&s, 0, sizeof s);
+	s.stop_at = 30;
+	int r = pm_boxtree_segment(&t, pm_dv3(-1, 0, 0), pm_dv3(101, 0, 0), note, &s);
+	CHECKF(r == 7 && s.calls == 30, "returned %d after %d calls", r, s.calls);
+	memset(&s, 0, sizeof s);
+	r = pm_boxtree_segment(&t, pm_dv3(-1, 0, 0), pm_dv3(101, 0, 0), note, &s);
+	CHECKF(r == 0 && s.calls == 100, "returned %d after %d calls", r, s.calls);
+	/* No boxes: nothing to call. */
+	CHECK(pm_boxtree_build(&t, (const double (*)[3])lo, (const double (*)[3])hi, 0, 0));
+	memset(&s, 0, sizeof s);
+	CHECK(pm_boxtree_segment(&t, pm_dv3(-1, 0, 0), pm_dv3(101, 0, 0), note, &s) == 0 && s.calls == 0);
+	pm_boxtree_free(&t);
+}
+
+int
+main(void)
+{
+	RUN(segments_find_every_box_they_meet);
+	RUN(query_stops_where_asked);
+	return check_done();
+}
