@@ -50,28 +50,40 @@ typedef struct ctx {
 	const uint32_t *patch;  /* each polygon's smooth patch (scene/patch.h) */
 } ctx;
 
-/* What a pixel's camera samples share. Its first-hit photon estimate,
- * reused by its later camera samples that land on the same smooth patch
- * (opts.estimate_once; a polygon, or the facets of one curved surface,
- * scene/patch.h): the first sample's point is uniform over the pixel's
- * footprint on that patch, so the pixel's expected value is unchanged,
- * provided that whether it is reused does not depend on that point (the
- * patches are fixed before any sample). Reuse pays where the estimate's support (2 info.size across)
- * covers at least the area of the pixel's footprint: the estimate then
- * barely varies within the pixel, while a support smaller than the
- * footprint (few photons per estimate, many per pass) would lose the
- * averaging of the samples' estimates, which are then nearly independent.
- * That test is made on the previous pixel of the row, on the same polygon,
- * or else on the pixel's first estimate, which then is used once and the
- * next one reused: made on the estimate it reuses, it kept dim estimates
- * (wide support) and diluted bright ones (narrow support), and a caustic
- * read 10 % dark. */
-typedef struct pxcache {
-	int valid;            /* L and info hold poly's estimate, to reuse
-	                         (poly and the others: patch numbers) */
-	uint32_t poly;
+/* What a pixel's camera samples share. Its first-hit photon estimate on
+ * each smooth patch it sees (up to PX_SLOTS of them), reused by its later
+ * camera samples that land on the same patch (opts.estimate_once; a
+ * polygon, or the facets of one curved surface, scene/patch.h): the
+ * samples are independent and uniform over the pixel, so the first one on
+ * a patch is uniform over the pixel's footprint on that patch, and the
+ * pixel's expected value is unchanged, provided that whether it is reused
+ * does not depend on that point (the patches are fixed before any
+ * sample). Across an edge a pixel sees several patches, in any order:
+ * keeping one estimate for the whole pixel made every sample on another
+ * patch estimate anew, up to 8 estimates a pixel there (thin: 110 960
+ * estimates for 65 536 pixels, the expensive ones of several polygons).
+ * Reuse pays where the estimate's support (2 info.size across) covers at
+ * least the area of the pixel's footprint: the estimate then barely varies
+ * within the pixel, while a support smaller than the footprint (few
+ * photons per estimate, many per pass) would lose the averaging of the
+ * samples' estimates, which are then nearly independent. That test is
+ * made on the previous pixel of the row, on the same patch, or else on the
+ * patch's first estimate in the pixel, which then is used once and the
+ * next one there reused: made on the estimate it reuses, it kept dim
+ * estimates (wide support) and diluted bright ones (narrow support), and a
+ * caustic read 10 % dark. */
+#define PX_SLOTS 4
+typedef struct pxslot {
+	uint32_t key;         /* a patch number */
+	int ok;               /* its estimates after the one that decided are reused */
+	int valid;            /* L and info hold one, to reuse */
 	pm_vec3 L;
 	pm_estimate_info info;
+} pxslot;
+
+typedef struct pxcache {
+	pxslot s[PX_SLOTS];   /* the patches seen so far, in order */
+	int ns;
 	int allow;            /* from the previous pixel: reuse on allow_poly */
 	uint32_t allow_poly;
 	int rec;              /* this pixel's first estimate, for the next */
@@ -91,37 +103,48 @@ first_estimate(const ctx *c, void *sc, const pm_hit *h, pm_vec3 n, pm_vec3 ns, p
 {
 	pm_vec3 L;
 	uint32_t key = c->patch ? c->patch[h->poly] : h->poly;
+	pxslot *sl = NULL;
 
-	if (pc && pc->valid && pc->poly == key) {
-		*info = pc->info;
-		return pc->L;
+	for (int i = 0; pc && i < pc->ns && !sl; i++)
+		sl = pc->s[i].key == key ? &pc->s[i] : NULL;
+	if (sl && sl->valid) {
+		*info = sl->info;
+		return sl->L;
 	}
 	L = c->est->estimate(&c->in, sc, h->p, n, ns, wo, m, info);
-	if (pc) {
+	if (!pc)
+		return L;
+	if (!sl) {
+		/* The footprint's area: the pixel's angle at distance t,
+		 * squared, stretched by the obliquity (capped, for grazing
+		 * views); the support's: (2 size)^2, a cube's cross-section. */
+		float cosv = fabsf(pm_dot(n, wo));
+		float w = h->t * c->pixel_angle;
+		int ok = w * w / (cosv > 0.05f ? cosv : 0.05f) <= 4.0f * info->size * info->size;
 		if (!pc->rec) {
-			/* The footprint's area: the pixel's angle at distance t,
-			 * squared, stretched by the obliquity (capped, for
-			 * grazing views); the support's: (2 size)^2, a cube's
-			 * cross-section. */
-			float cosv = fabsf(pm_dot(n, wo));
-			float w = h->t * c->pixel_angle;
 			pc->rec = 1;
-			pc->rec_ok = w * w / (cosv > 0.05f ? cosv : 0.05f) <= 4.0f * info->size * info->size;
+			pc->rec_ok = ok;
 			pc->rec_poly = key;
-			/* No word from the previous pixel on this polygon: this
-			 * estimate decides for the next one here, which is
-			 * reused, and is itself used once. */
-			if (!(pc->allow && pc->allow_poly == key)) {
-				pc->allow = pc->rec_ok;
-				pc->allow_poly = key;
-				pc->valid = 0;
-				return L;
-			}
 		}
-		pc->valid = pc->allow && pc->allow_poly == key;
-		pc->poly = key;
-		pc->L = L;
-		pc->info = *info;
+		/* Past PX_SLOTS patches, every sample estimates anew. */
+		if (pc->ns == PX_SLOTS)
+			return L;
+		sl = &pc->s[pc->ns++];
+		sl->key = key;
+		sl->valid = 0;
+		/* No word from the previous pixel on this patch: this estimate
+		 * decides for the next one here, which is reused, and is
+		 * itself used once. */
+		sl->ok = pc->allow && pc->allow_poly == key;
+		if (!sl->ok) {
+			sl->ok = ok;
+			return L;
+		}
+	}
+	if (sl->ok) {
+		sl->valid = 1;
+		sl->L = L;
+		sl->info = *info;
 	}
 	return L;
 }
@@ -320,7 +343,7 @@ pm_render(const pm_frame *f, const pm_photons *map, const pm_render_opts *o,
 				/* Not zeroed whole: the guide's histogram is read
 				 * only once built (gvalid). */
 				pxcache pc;
-				pc.valid = pc.rec = pc.gvalid = 0;
+				pc.ns = pc.rec = pc.gvalid = 0;
 				pc.allow = allow;
 				pc.allow_poly = allow_poly;
 				for (int k = 0; k < o->spp; k++) {
