@@ -472,9 +472,14 @@ static void
 seen_many(pm_comp_scratch *sc, const cpoly *P, pm_dvec3 xo, const pm_dvec3 *y, int n,
           double eps, unsigned char *vis)
 {
+	if (P->cast) {
+		for (int s = 0; s < n; s++)
+			vis[s] = seen_cast(sc, P, xo, y[s], eps);
+		return;
+	}
 	for (int s = 0; s < n; s++)
-		vis[s] = P->cast ? seen_cast(sc, P, xo, y[s], eps) : 1;
-	for (int i = 0; i < P->nr && !P->cast; i++) {
+		vis[s] = 1;
+	for (int i = 0; i < P->nr; i++) {
 		const cpoly *B = &sc->g[sc->bl[P->r0 + i]];
 		double sx = pm_ddot(B->N, xo) - B->d;
 		if (fabs(sx) <= eps)
@@ -1130,7 +1135,8 @@ pair_lists(pm_comp_scratch *sc, const unsigned char *cvx, pm_dvec3 xo, pm_dvec3 
            int *xf0, int *nxf)
 {
 	int ng = sc->ng, ngr = sc->ngr, follow = ngr <= FATE_MAX_GROUPS, grid = ng >= SIGHT_MIN;
-	int cast_at = pm_comp_cast_at < 9 ? 9 : pm_comp_cast_at;
+	/* In a cube for the grid, a walk that finds this many stops (CAST_AT). */
+	int stop = !grid ? INT_MAX : pm_comp_cast_at < 9 ? 9 : pm_comp_cast_at;
 	/* One sheet is all the cube holds: it hides none of itself, and a ray
 	 * leaving it does not meet it again, so every polygon's lists are
 	 * empty (x's too, where x lies on it). */
@@ -1188,8 +1194,6 @@ pair_lists(pm_comp_scratch *sc, const unsigned char *cvx, pm_dvec3 xo, pm_dvec3 
 		if (P->unseen || !P->lit)
 			;
 		else if (!grid || sc->sg[a].face < 0) {
-			/* In a cube for the grid, a walk that finds CAST_AT stops. */
-			int stop = grid ? cast_at : INT_MAX;
 			for (int G = 0; G < ngr && sc->nbl - P->r0 < stop; G++) {
 				const cgroup *Gr = &sc->gr[G];
 				if (skip_group(sc, cvx, P, G, sgrp, xo, eps))
@@ -1204,7 +1208,7 @@ pair_lists(pm_comp_scratch *sc, const unsigned char *cvx, pm_dvec3 xo, pm_dvec3 
 				return 0;
 			built = 1;
 			nc = pm_sight_grid_query(&sc->grid, ng, &sc->sg[a], sc->cand, sc->mark, st);
-			for (int k = 0; k < nc && sc->nbl - P->r0 < cast_at; k++) {
+			for (int k = 0; k < nc && sc->nbl - P->r0 < stop; k++) {
 				int b = sc->cand[k], G = sc->g[b].grp;
 				if (sc->gmk[G] != st) {
 					sc->gmk[G] = st;
@@ -1215,9 +1219,9 @@ pair_lists(pm_comp_scratch *sc, const unsigned char *cvx, pm_dvec3 xo, pm_dvec3 
 			}
 		}
 		P->nr = sc->nbl - P->r0;
-		if (grid && P->nr >= cast_at) {
+		if (P->nr >= stop) {
 			P->cast = 1;
-			P->nr = cast_at;
+			P->nr = stop;
 			sc->nbl = P->r0;
 		}
 		P->f0 = sc->nbl;

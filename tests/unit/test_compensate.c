@@ -1544,11 +1544,19 @@ TEST(tree_sees_what_the_lists_see)
 		pm_comp_scratch *sc = pm_comp_scratch_new(K);
 		for (int q = 0; q < 20; q++) {
 			pm_vec3 x = pm_v3((float)(0.06 * rnd(&r) - 0.03), (float)(0.06 * rnd(&r) - 0.03), 0);
+			static int idx[4096];
+			static pm_vec3 pos[4096], dir[4096];
 			pm_comp_stats st1, st2;
+			double dfar;
+			int n = knn(&p, x, K, linf, idx, &dfar), same = 1;
+			for (int a = 0; a < n; a++) {
+				pos[a] = p.pos[idx[a]];
+				dir[a] = p.dir[idx[a]];
+			}
 			pm_comp_cast_at = INT_MAX;
-			int n = weigh_twice(&p, x, K, pi, pi, sc, w1, w1, &st1, &st1), same = 1;
+			pm_comp_weights(pi, x, UP, pos, dir, n, 0, sc, w1, &st1);
 			pm_comp_cast_at = 9;
-			weigh_twice(&p, x, K, pi, pi, sc, w2, w2, &st2, &st2);
+			pm_comp_weights(pi, x, UP, pos, dir, n, 0, sc, w2, &st2);
 			double s1 = 0;
 			for (int a = 0; a < n; a++) {
 				s1 += w1[a];
