@@ -3,7 +3,7 @@
  * "no cliff"): estimates at the camera's first photon-surface hits (pixel
  * centres), one thread, each timed alone (thread CPU time).
  *
- *   compcost [-n PHOTONS] [-k K] [-r RUNS] [-o FILE] SCENE
+ *   compcost [-c CAST_AT] [-n PHOTONS] [-k K] [-r RUNS] [-o FILE] SCENE
  *   compcost -t SCENE      (prints the scene's triangles and stops)
  *
  * Prints "name<TAB>value" lines: the median over RUNS of the mean time per
@@ -13,7 +13,8 @@
  * estimates there and their mean time. -o writes one line per estimate:
  * polygons in its cube, microseconds (compensated, classical), and the
  * compensated RGB, for plots and for comparing two builds estimate by
- * estimate. */
+ * estimate. -c sets the compensated estimate's CAST_AT (pm_comp_cast_at,
+ * compensate.h), which changes its time, not its answers. */
 #include <float.h>
 #include <math.h>
 #include <omp.h>
@@ -73,20 +74,21 @@ main(int argc, char **argv)
 	pm_camera cam;
 	pm_error err;
 
-	while ((c = getopt(argc, argv, "k:n:o:r:t")) != -1) {
+	while ((c = getopt(argc, argv, "c:k:n:o:r:t")) != -1) {
 		switch (c) {
+		case 'c': pm_comp_cast_at = atoi(optarg); break;
 		case 'k': k = atoi(optarg); break;
 		case 'n': nph = atol(optarg); break;
 		case 'o': out = optarg; break;
 		case 'r': runs = atoi(optarg); break;
 		case 't': tris_only = 1; break;
 		default:
-			fprintf(stderr, "usage: compcost [-n PHOTONS] [-k K] [-r RUNS] [-o FILE] SCENE\n");
+			fprintf(stderr, "usage: compcost [-c CAST_AT] [-n PHOTONS] [-k K] [-r RUNS] [-o FILE] SCENE\n");
 			return 2;
 		}
 	}
 	if (argc - optind != 1 || nph < 1 || k < 1 || runs < 1 || runs > 99) {
-		fprintf(stderr, "usage: compcost [-n PHOTONS] [-k K] [-r RUNS] [-o FILE] SCENE\n");
+		fprintf(stderr, "usage: compcost [-c CAST_AT] [-n PHOTONS] [-k K] [-r RUNS] [-o FILE] SCENE\n");
 		return 2;
 	}
 	const char *path = argv[optind];

@@ -6,7 +6,11 @@
 # Usage: tests/run.sh BUILD_DIR... [PATTERN]
 # A test also fails if a sanitizer (ASan, UBSan, LSan) or valgrind (through
 # the wrappers of tests/memcheck.sh) wrote a report while it ran: reports go
-# to files in $PM_REPORT_DIR, which is checked after each test.
+# to files in $PM_REPORT_DIR, which is checked after each test (run1.sh).
+# Tests run PM_TEST_JOBS at a time (default: one per CPU), each in its own
+# directory; lines come in the order tests end. The end-to-end scripts go
+# first, the slowest tree's first, so that the long ones do not finish last
+# alone. PM_TEST_JOBS=1 runs one at a time in list order.
 top=$(cd "$(dirname "$0")/.." && pwd)
 dirs= pat=
 for a in "$@"; do
@@ -21,64 +25,56 @@ done
 export PM_TOP="$top"
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
-export PM_REPORT_DIR="$tmp/reports"
-mkdir "$PM_REPORT_DIR"
-# Sanitizer settings for the instrumented tree (ignored by a plain build):
-# reports to files, so one inside a pipeline is not lost; a distinct exit
-# status. detect_leaks is LeakSanitizer's default on x86-64, made explicit.
-export ASAN_OPTIONS="log_path=$PM_REPORT_DIR/asan:exitcode=99:detect_leaks=1:strict_string_checks=1:detect_stack_use_after_return=1${ASAN_OPTIONS:+:$ASAN_OPTIONS}"
-export UBSAN_OPTIONS="log_path=$PM_REPORT_DIR/ubsan:print_stacktrace=1:halt_on_error=1:exitcode=99${UBSAN_OPTIONS:+:$UBSAN_OPTIONS}"
+export PM_WORK="$tmp" PM_LIST="$tmp/list" PM_RESULTS="$tmp/results"
+export PM_ASAN_USER="${ASAN_OPTIONS:-}" PM_UBSAN_USER="${UBSAN_OPTIONS:-}"
 export LSAN_OPTIONS="suppressions=$top/tests/lsan.supp${LSAN_OPTIONS:+:$LSAN_OPTIONS}"
+mkdir "$PM_RESULTS"
+jobs=${PM_TEST_JOBS:-$(nproc 2>/dev/null || echo 1)}
+# PM_SUITE=DIR runs DIR/*.sh alone (make check-cluster: tests/cluster), one
+# at a time: its tests share one cluster.
+[ -n "${PM_SUITE:-}" ] && jobs=1
+case "$jobs" in '' | *[!0-9]* | 0) echo "run.sh: PM_TEST_JOBS must be a positive number" >&2; exit 2 ;; esac
 ndirs=$(echo $dirs | wc -w)
-pass=0 fail=0
-for B in $dirs; do
-	export PM_BIN="$B/bin"
+rev=
+for B in $dirs; do rev="$B $rev"; done
+# list KIND TREE: appends that tree's tests of one kind (scripts, binaries).
+list() {
+	B=$1
 	tag=
 	[ "$ndirs" -gt 1 ] && tag=" [$(basename "$B")]"
-	# PM_SUITE=DIR runs DIR/*.sh alone (make check-cluster: tests/cluster).
-	if [ -n "${PM_SUITE:-}" ]; then set -- "$top/$PM_SUITE"/*.sh
-	else set -- "$B"/tests/test_* "$B"/fuzz/replay-* "$top"/tests/e2e/*.sh; fi
+	if [ "$2" = scripts ]; then
+		if [ -n "${PM_SUITE:-}" ]; then set -- "$top/$PM_SUITE"/*.sh
+		else set -- "$top"/tests/e2e/*.sh; fi
+	else
+		[ -n "${PM_SUITE:-}" ] && return
+		set -- "$B"/tests/test_* "$B"/fuzz/replay-*
+	fi
 	for t in "$@"; do
 		case "$t" in *.o) continue ;; esac
 		[ -e "$t" ] || continue
 		[ -n "$pat" ] && case "$t" in *"$pat"*) ;; *) continue ;; esac
-		name=$(basename "$t")$tag
-		start=$(date +%s)
-		# Each test in a directory of its own: no test sees another's files.
-		w=$(mktemp -d "$tmp/work.XXXXXX")
-		case "$t" in
-		*.sh) (cd "$w" && sh "$t") >"$tmp/out" 2>"$tmp/err" ;;
-		*/replay-*)
-			# every seed and every past crash of this target
-			tgt=${t##*/replay-}
-			set --
-			for d in "$top/tests/fuzz/corpus/$tgt" "$top/tests/fuzz/regress/$tgt"; do
-				[ -d "$d" ] && set -- "$@" "$d"
-			done
-			(cd "$w" && "$t" "$@") >"$tmp/out" 2>"$tmp/err" ;;
-		*) (cd "$w" && "$t") >"$tmp/out" 2>"$tmp/err" ;;
-		esac
-		rc=$?
-		p=$(grep -c '^ok - ' "$tmp/out")
-		f=$(grep -c '^not ok - ' "$tmp/out")
-		if [ "$rc" -ne 0 ] && [ "$f" -eq 0 ]; then
-			echo "not ok - $name: exited $rc without a failed check" >>"$tmp/out"
-			f=1
-		fi
-		for r in "$PM_REPORT_DIR"/*; do
-			[ -s "$r" ] || continue
-			echo "not ok - $name: report in $(basename "$r"): $(grep -m1 -E 'ERROR|runtime error|definitely lost|Invalid|uninitialised|SUMMARY' "$r" | cut -c1-200)" >>"$tmp/out"
-			sed -n '1,12p' "$r" | sed 's/^/  also /' >>"$tmp/out"
-			f=$((f + 1))
-		done
-		rm -f "$PM_REPORT_DIR"/*
-		pass=$((pass + p)); fail=$((fail + f))
-		printf '%-36s %3d passed %3d failed  %3ds\n' "$name" "$p" "$f" $(( $(date +%s) - start ))
-		if [ "$f" -ne 0 ]; then
-			grep '^not ok - \|^  also' "$tmp/out" | sed 's/^/    /'
-			tail -n 5 "$tmp/err" | sed 's/^/    stderr: /'
-		fi
-	done
+		printf '%s\t%s\t%s\n' "$B" "$t" "$(basename "$t")$tag"
+	done >>"$PM_LIST"
+}
+: >"$PM_LIST"
+if [ "$jobs" -eq 1 ]; then
+	for B in $dirs; do list "$B" binaries; list "$B" scripts; done
+else
+	for B in $rev; do list "$B" scripts; done
+	for B in $rev; do list "$B" binaries; done
+fi
+n=$(wc -l <"$PM_LIST")
+[ "$n" -gt 0 ] && seq 1 "$n" | xargs -P "$jobs" -n 1 sh "$top/tests/run1.sh"
+pass=0 fail=0 i=1
+while [ "$i" -le "$n" ]; do
+	# A test whose runner was killed left no result: it failed.
+	if [ -s "$PM_RESULTS/$i" ]; then
+		read -r p f <"$PM_RESULTS/$i"
+	else
+		p=0 f=1
+		echo "not ok - $(sed -n "${i}p" "$PM_LIST" | cut -f3): no result"
+	fi
+	pass=$((pass + p)); fail=$((fail + f)); i=$((i + 1))
 done
 echo "$pass passed, $fail failed"
 [ "$fail" -eq 0 ]
