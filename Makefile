@@ -3,7 +3,7 @@ include config.mk
 
 B        ?= build
 LIB_C    := $(wildcard lib/*/*.c)
-LIB_CXX  := $(wildcard lib/*/*.cpp)
+LIB_CXX  := $(filter-out lib/scene/oiio.cpp,$(wildcard lib/*/*.cpp))
 LIB_H    := $(wildcard lib/*/*.h)
 LIB_OBJ  := $(LIB_C:%.c=$(B)/%.o) $(LIB_CXX:%.cpp=$(B)/%.o)
 TOOL_SRC := $(wildcard tools/pm-*.c)
@@ -12,7 +12,16 @@ UTIL_OBJ := $(B)/tools/util.o $(B)/tools/bar.o $(B)/tools/options.o
 UNIT_SRC := $(wildcard tests/unit/test_*.c)
 UNITS    := $(UNIT_SRC:tests/unit/%.c=$(B)/tests/%)
 
-all: $(TOOLS)
+# OpenImageIO's module, loaded when an image is first read (lib/scene/oiio.h).
+PLUGIN   := $(B)/lib/pm/pm-oiio.so
+
+all: $(TOOLS) $(PLUGIN)
+
+$(PLUGIN): lib/scene/oiio.cpp lib/scene/oiio.h lib/scene/texfilter.h config.mk
+	@mkdir -p $(@D)
+	$(CXX) $(CXXFLAGS) $(OIIO_CFLAGS) -fPIC -shared $< -o $@ $(LDFLAGS) $(OIIO_LIBS)
+
+$(B)/lib/scene/oiio_load.o: CFLAGS += -DPM_BUILD_PLUGINS='"$(abspath $(B))/lib/pm"'
 
 $(B)/lib/%.o: lib/%.c $(LIB_H) config.mk
 	@mkdir -p $(@D)
@@ -42,12 +51,14 @@ $(B)/tests/%: tests/unit/%.c tests/check.h $(B)/libpm.a
 deps:
 	@sh mk/deps.sh
 
+# make check builds with one job a CPU (JOBS=N to choose).
+JOBS ?= $(shell nproc 2>/dev/null || echo 1)
 check: deps
-	@$(MAKE) --no-print-directory all-tests
-	@$(MAKE) --no-print-directory asan-tests
+	@$(MAKE) --no-print-directory -j$(JOBS) all-tests
+	@$(MAKE) --no-print-directory -j$(JOBS) asan-tests
 	@sh tests/run.sh $(B) $(B)-asan
 
-all-tests: $(TOOLS) $(UNITS)
+all-tests: $(TOOLS) $(UNITS) $(PLUGIN)
 
 demo: deps
 	@$(MAKE) --no-print-directory all
@@ -57,6 +68,8 @@ demo: deps
 install: all
 	install -d $(DESTDIR)$(PREFIX)/bin
 	install -m 755 $(TOOLS) $(DESTDIR)$(PREFIX)/bin
+	install -d $(DESTDIR)$(PREFIX)/lib/pm
+	install -m 644 $(PLUGIN) $(DESTDIR)$(PREFIX)/lib/pm
 	install -d $(DESTDIR)$(PREFIX)/share/man/man1
 	install -m 644 $(wildcard man/pm-*.1) $(DESTDIR)$(PREFIX)/share/man/man1
 
@@ -106,7 +119,7 @@ fuzz:
 	@sh mk/deps.sh fuzz
 	@$(MAKE) --no-print-directory B=$(FUZZ_B) CC=clang CXX=clang++ \
 		OPT='-O1 -g -fno-omit-frame-pointer $(SAN) -fsanitize=fuzzer-no-link' \
-		LDFLAGS='-fopenmp $(SAN)' $(FUZZ_B)/libpm.a \
+		LDFLAGS='-fopenmp $(SAN)' $(FUZZ_B)/libpm.a $(FUZZ_B)/lib/pm/pm-oiio.so \
 		$(FUZZ_TARGETS:%=$(FUZZ_B)/fuzz/fuzz_%.o) $(FUZZ_B)/fuzz/util.o
 	@set -e; for t in $(FUZZ_TARGETS); do \
 		clang++ -fopenmp $(SAN) -fsanitize=fuzzer $(FUZZ_B)/fuzz/fuzz_$$t.o \
@@ -158,7 +171,7 @@ $(B)/bench/%.o: bench/%.cpp config.mk
 $(B)/bench/%: $(B)/bench/%.o $(BENCH_XOBJ) $(B)/libpm.a
 	$(CXX) $(LDFLAGS) $(BENCH_LDFLAGS) $< $(BENCH_XOBJ) $(B)/libpm.a $(LDLIBS) -o $@
 $(B)/bench/hot: BENCH_LDFLAGS = -Wl,--wrap=pm_accel_hit
-bench-progs: $(TOOLS) $(BENCH)
+bench-progs: $(TOOLS) $(BENCH) $(PLUGIN)
 bench bench-quick: deps
 	@sh mk/deps.sh bench
 	@$(MAKE) --no-print-directory bench-progs $(if $(filter bench,$@),all-tests)

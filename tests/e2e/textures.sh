@@ -106,6 +106,24 @@ expect_fail "unreadable texture" 1 "^pm-render: bad.pms:2: 'junk.png': cannot re
 sed 's/tex chk/tex nope/' chk.pms >bad.pms
 expect_fail "unknown texture" 1 "^pm-render: bad.pms:3: material 'floor': unknown texture 'nope'" pm-render -e path bad.pms -o bad.exr
 
+# OpenImageIO is a module loaded when an image is first read
+# (lib/scene/oiio.h): a scene without images needs none, and one with an
+# image refuses, naming the file, where the module is missing or broken.
+check "pm-render does not link OpenImageIO" sh -c "! ldd '$PM_BIN/pm-render' | grep -q OpenImageIO"
+check "... its module does" sh -c "ldd '$PM_BIN/../lib/pm/pm-oiio.so' | grep -q OpenImageIO"
+mkdir nomod badmod
+PM_PLUGIN_DIR=$PWD/nomod pm-render -q -e path -p 1 chk.pms -o nomod.exr
+check "a scene without images renders without the module" "$tools/exrstat" nomod.exr
+sed 's/^texture .*/texture img image quads.pgm/; s/tex chk/tex img/' chk.pms >img2.pms
+expect_fail "module missing: the image refused, the module named" 1 \
+	"^pm-render: img2.pms:2: 'quads.pgm': cannot read image: OpenImageIO module pm-oiio.so not in PM_PLUGIN_DIR" \
+	env PM_PLUGIN_DIR="$PWD/nomod" pm-render -e path img2.pms -o nomod2.exr
+check "... and no image written" test ! -e nomod2.exr
+echo 'not a shared object' >badmod/pm-oiio.so
+expect_fail "module broken: the loader's reason given" 1 \
+	"^pm-render: img2.pms:2: 'quads.pgm': cannot read image: OpenImageIO module: .*badmod/pm-oiio.so" \
+	env PM_PLUGIN_DIR="$PWD/badmod" pm-render -e path img2.pms -o nomod2.exr
+
 # Filtered lookups: a floor checkered in squares of half a unit to the
 # horizon, lit so that it reads its albedo (E = pi from straight above).
 # Where a camera sample's footprint (half a pixel at 4 samples) spans many

@@ -24,7 +24,7 @@ export PATH="$B/bin:$PATH"
 stat="$B/tests/tools/exrstat"
 # Outside tests/run.sh (make fuzz-scenes) a sanitizer's report must not
 # pass for a refusal: a distinct exit status.
-export ASAN_OPTIONS="${ASAN_OPTIONS:-exitcode=99}"
+export ASAN_OPTIONS="${ASAN_OPTIONS:-exitcode=99:intercept_tls_get_addr=0}"
 export UBSAN_OPTIONS="${UBSAN_OPTIONS:-halt_on_error=1:exitcode=99}"
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT

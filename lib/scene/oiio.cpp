@@ -1,6 +1,7 @@
-// texfilter.cpp — the OpenImageIO TextureSystem shim behind texfilter.h.
-// The texels are handed to the TextureSystem through an ImageInput of our
-// own that reads them from memory ("automip" then builds the levels), each
+// oiio.cpp — pm-oiio.so, the module behind oiio.h: image files read with
+// OpenImageIO, and its TextureSystem for filtered texture lookups. The
+// texels are handed to the TextureSystem through an ImageInput of our own
+// that reads them from memory ("automip" then builds the levels), each
 // texture under a name of its own in one process-wide TextureSystem. Every
 // C++ exception stops here.
 #include <OpenImageIO/imageio.h>
@@ -9,6 +10,7 @@
 
 #include <atomic>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <map>
 #include <mutex>
@@ -16,8 +18,10 @@
 #include <string>
 
 extern "C" {
-#include "scene/texfilter.h"
+#include "scene/oiio.h"
 }
+
+#define MAX_PIXELS (1u << 28)
 
 namespace {
 
@@ -94,8 +98,8 @@ struct pm_texfilter {
 	OIIO::TextureSystem::TextureHandle *handle;
 };
 
-extern "C" pm_texfilter *
-pm_texfilter_new(int w, int h, const float *px)
+static pm_texfilter *
+tex_new(int w, int h, const float *px)
 {
 	try {
 		char name[64];
@@ -119,8 +123,8 @@ pm_texfilter_new(int w, int h, const float *px)
 	}
 }
 
-extern "C" void
-pm_texfilter_free(pm_texfilter *f)
+static void
+tex_free(pm_texfilter *f)
 {
 	if (!f)
 		return;
@@ -133,8 +137,8 @@ pm_texfilter_free(pm_texfilter *f)
 	delete f;
 }
 
-extern "C" int
-pm_texfilter_lookup(pm_texfilter *f, float s, float t, float dsdx, float dtdx, float dsdy,
+static int
+tex_lookup(pm_texfilter *f, float s, float t, float dsdx, float dtdx, float dsdy,
                     float dtdy, float rgb[3])
 {
 	rgb[0] = rgb[1] = rgb[2] = 0;
@@ -154,4 +158,81 @@ pm_texfilter_lookup(pm_texfilter *f, float s, float t, float dsdx, float dtdx, f
 		rgb[0] = rgb[1] = rgb[2] = 0;
 		return -1;
 	}
+}
+
+namespace {
+
+// The first line of an OpenImageIO error, into msg.
+void
+say(char *msg, size_t n, const char *path, const char *what, std::string e)
+{
+	size_t nl = e.find('\n');
+	if (nl != std::string::npos)
+		e.resize(nl);
+	std::snprintf(msg, n, "'%s': %s%s%s", path, what, e.empty() ? "" : ": ", e.c_str());
+}
+
+int
+read_file(const char *path, int *w, int *h, int *nc, int *srgb, float **px, char *msg, size_t n)
+{
+	auto in = OIIO::ImageInput::open(path);
+	if (!in) {
+		std::string e = OIIO::geterror();
+		say(msg, n, path, "cannot read image", e.empty() ? "unknown format" : e);
+		return -1;
+	}
+	const OIIO::ImageSpec &spec = in->spec();
+	if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0 || spec.depth > 1) {
+		say(msg, n, path, "image has no pixels", "");
+		return -1;
+	}
+	if ((unsigned long long)spec.width * (unsigned long long)spec.height > MAX_PIXELS) {
+		std::snprintf(msg, n, "'%s': image larger than %u pixels", path, MAX_PIXELS);
+		return -1;
+	}
+	size_t count = (size_t)spec.width * spec.height * spec.nchannels;
+	float *buf = (float *)std::malloc(count * sizeof *buf);
+	if (!buf) {
+		say(msg, n, path, "out of memory", "");
+		return -1;
+	}
+	if (!in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, buf)) {
+		std::free(buf);
+		say(msg, n, path, "cannot read image", in->geterror());
+		return -1;
+	}
+	in->close();
+	OIIO::TypeDesc::BASETYPE bt = (OIIO::TypeDesc::BASETYPE)spec.format.basetype;
+	*srgb = !(bt == OIIO::TypeDesc::FLOAT || bt == OIIO::TypeDesc::HALF || bt == OIIO::TypeDesc::DOUBLE);
+	*w = spec.width;
+	*h = spec.height;
+	*nc = spec.nchannels;
+	*px = buf;
+	return 0;
+}
+
+int
+read_image(const char *path, int *w, int *h, int *nc, int *srgb, float **px, char *msg, size_t n)
+{
+	*px = nullptr;
+	try {
+		return read_file(path, w, h, nc, srgb, px, msg, n);
+	} catch (const std::bad_alloc &) {
+		say(msg, n, path, "out of memory", "");
+	} catch (const std::exception &e) {
+		say(msg, n, path, "cannot read image", e.what());
+	} catch (...) {
+		say(msg, n, path, "cannot read image", "");
+	}
+	return -1;
+}
+
+const pm_oiio_api api = {read_image, tex_new, tex_free, tex_lookup};
+
+} // namespace
+
+extern "C" __attribute__((visibility("default"))) const pm_oiio_api *
+pm_oiio_api_v1(void)
+{
+	return &api;
 }
