@@ -1842,7 +1842,7 @@ pm_estimate_compensated_shrink(const pm_polyindex *pi, const pm_photons *map,
 	float q[3] = {x.x, x.y, x.z}, dfar = 0;
 	int got, complete;
 
-	info->size = 0;
+	info->size = info->disc = 0;
 	info->nphotons = 0;
 	if (!sc)
 		return L;
@@ -1883,6 +1883,7 @@ pm_estimate_compensated_shrink(const pm_polyindex *pi, const pm_photons *map,
 	}
 	L = pm_v3((float)sum[0], (float)sum[1], (float)sum[2]);
 	info->size = (float)sc->last.h;
+	info->disc = (float)(2 * sc->last.h / sqrt(PM_PI));
 	info->nphotons = got;
 	return L;
 }

@@ -55,18 +55,18 @@ pm_estimate_classical_shrink(const pm_photons *map, pm_vec3 x, pm_vec3 n, pm_vec
 	pm_vec3 sum = pm_v3(0, 0, 0);
 	int got;
 
-	info->size = 0;
+	info->size = info->disc = 0;
 	info->nphotons = 0;
 	if (map->h.count == 0 || map->h.emitted == 0 || k <= 0)
 		return sum;
 	got = pm_kd_knn(map->p, map->h.count, q, k, PM_L2, INFINITY, nn, &r2);
 	info->nphotons = got;
-	info->size = sqrtf(r2);
+	info->size = info->disc = sqrtf(r2);
 	if (got == 0 || !(r2 > 0))
 		return sum;
 	if (shrink > 0 && shrink < 1) {
 		r2 = (float)((double)r2 * shrink * shrink);
-		info->size = sqrtf(r2);
+		info->size = info->disc = sqrtf(r2);
 		if (!(r2 > 0))
 			return sum;
 	}

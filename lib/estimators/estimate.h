@@ -19,6 +19,8 @@
 
 typedef struct pm_estimate_info {
 	float size;         /* sphere radius (classical) or cube half-size (compensated) */
+	float disc;         /* the radius of a disc of the support's cross-section:
+	                       size (classical), 2 size / sqrt(pi) (compensated) */
 	int nphotons;       /* photons found */
 } pm_estimate_info;
 

@@ -115,7 +115,7 @@ pm_gather_radiance(const pm_gather *g, void *sc, pm_rng *r, pm_vec3 x, pm_vec3 n
 	pm_guide gd;
 	int nr = g->o->rays > 0 ? g->o->rays : 1;
 
-	info->size = 0;
+	info->size = info->disc = 0;
 	info->nphotons = 0;
 	if (g->o->caustic)
 		L = g->est->estimate(&g->caustic, sc, x, n, ns, wo, m, info);

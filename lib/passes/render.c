@@ -62,9 +62,13 @@ typedef struct ctx {
  * keeping one estimate for the whole pixel made every sample on another
  * patch estimate anew, up to 8 estimates a pixel there (thin: 110 960
  * estimates for 65 536 pixels, the expensive ones of several polygons).
- * Reuse pays where the estimate's support (2 info.size across) covers at
- * least the area of the pixel's footprint: the estimate then barely varies
- * within the pixel, while a support smaller than the footprint (few
+ * Reuse pays where the estimate's support covers about the area of the
+ * pixel's footprint: the square around a disc as large as the support
+ * (2 info.disc across; the compensated cube counts as the disc of its
+ * cross-section's area, so both estimates reuse alike: judged by the
+ * cube's own side, the compensated pass took 42 % more estimates than the
+ * classical one on the Cornell box, for 1 % less noise). The estimate then
+ * barely varies within the pixel, while a support smaller than the footprint (few
  * photons per estimate, many per pass) would lose the averaging of the
  * samples' estimates, which are then nearly independent. That test is
  * made on the previous pixel of the row, on the same patch, or else on the
@@ -120,7 +124,7 @@ first_estimate(const ctx *c, void *sc, const pm_hit *h, pm_vec3 n, pm_vec3 ns, p
 		 * views); the support's: (2 size)^2, a cube's cross-section. */
 		float cosv = fabsf(pm_dot(n, wo));
 		float w = h->t * c->pixel_angle;
-		int ok = w * w / (cosv > 0.05f ? cosv : 0.05f) <= 4.0f * info->size * info->size;
+		int ok = w * w / (cosv > 0.05f ? cosv : 0.05f) <= 4.0f * info->disc * info->disc;
 		if (!pc->rec) {
 			pc->rec = 1;
 			pc->rec_ok = ok;
