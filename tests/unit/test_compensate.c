@@ -1227,6 +1227,56 @@ TEST(full_estimate_matches_core)
 	tp_free(&d);
 }
 
+/* pm-render's reuse test compares a pixel's footprint with the square
+ * around a disc as large as the estimate's support (info.disc). On a
+ * uniform field of photons both estimates' supports hold the same k
+ * photons, so their discs agree on average: the compensated cube counts as
+ * the disc of its cross-section's area (its half-size itself would read
+ * 0.886 of the classical radius, and the compensated pass reused less). */
+TEST(support_discs_agree)
+{
+	tscene t;
+	pm_rng r = pm_rng_seed(29, 0);
+	ts_init(&t);
+	int o = ts_object(&t, 0, 0);
+	ts_rect(&t, o, pm_v3(-4, -4, 0), pm_v3(8, 0, 0), pm_v3(0, 8, 0));
+	pm_polyindex *pi = index_of(&t);
+	int n = 40000;
+	pm_photons map;
+	memset(&map, 0, sizeof map);
+	map.p = malloc((size_t)n * sizeof *map.p);
+	map.h.count = (uint64_t)n;
+	map.h.emitted = (uint64_t)n;
+	for (int i = 0; i < n; i++) {
+		pm_vec3 pos = pm_v3(-4 + 8 * pm_rng_f(&r), -4 + 8 * pm_rng_f(&r), 0);
+		pm_photon_pack(&map.p[i], pos, unit(0.3, -0.2, 1), UP, pm_v3(1, 1, 1));
+	}
+	pm_error err;
+	CHECK(pm_kd_build(map.p, (size_t)n, &err) == 0);
+	pm_comp_scratch *sc = pm_comp_scratch_new(K);
+	pm_nn *nn = malloc(K * sizeof *nn);
+	double sum = 0, sumh = 0;
+	int m = 0;
+	for (int i = 0; i < 64; i++) {
+		pm_vec3 x = pm_v3(-2 + 4 * pm_rng_f(&r), -2 + 4 * pm_rng_f(&r), 0);
+		pm_estimate_info ic, ik;
+		pm_estimate_compensated(pi, &map, x, UP, UP, &t.mats[0], K, sc, &ic);
+		pm_estimate_classical(&map, x, UP, UP, &t.mats[0], K, nn, &ik);
+		if (!(ik.disc > 0))
+			continue;
+		sum += ic.disc / ik.disc;
+		sumh += ic.size / ik.disc;
+		m++;
+	}
+	CHECKF(m == 64, "%d estimates", m);
+	CHECKF(fabs(sum / m - 1) < 0.04, "compensated disc / classical disc: %g on average", sum / m);
+	CHECKF(fabs(sumh / m - 1) > 0.08, "the cube's half-size alone: %g", sumh / m);
+	free(nn);
+	pm_comp_scratch_free(sc);
+	free(map.p);
+	pm_polyindex_free(pi);
+}
+
 /* ---- meshes: sheets ---- */
 
 /* A grid of nu x nv quads, vertex (i, j) at f(i / nu, j / nv), shared by
@@ -1599,6 +1649,7 @@ main(void)
 	RUN(translation_and_scale);
 	RUN(polyindex_matches_brute_force);
 	RUN(full_estimate_matches_core);
+	RUN(support_discs_agree);
 	RUN(tessellated_floor_is_one_quad);
 	RUN(curved_sheet_parallel_beam);
 	RUN(floor_twice_under_many_groups);
