@@ -67,15 +67,15 @@ typedef struct ctx {
  * (2 info.disc across; the compensated cube counts as the disc of its
  * cross-section's area, so both estimates reuse alike: judged by the
  * cube's own side, the compensated pass took 42 % more estimates than the
- * classical one on the Cornell box, for 1 % less noise). The estimate then
- * barely varies within the pixel, while a support smaller than the footprint (few
- * photons per estimate, many per pass) would lose the averaging of the
- * samples' estimates, which are then nearly independent. That test is
- * made on the previous pixel of the row, on the same patch, or else on the
- * patch's first estimate in the pixel, which then is used once and the
- * next one there reused: made on the estimate it reuses, it kept dim
- * estimates (wide support) and diluted bright ones (narrow support), and a
- * caustic read 10 % dark. */
+ * classical one on the Cornell box, for 1 % less noise). The estimate
+ * then barely varies within the pixel, while a support smaller than the
+ * footprint (few photons per estimate, many per pass) would lose the
+ * averaging of the samples' estimates, which are then nearly independent.
+ * That test is made on the previous pixel of the row, on the same patch,
+ * or else on the patch's first estimate in the pixel, which then is used
+ * once and the next one there reused: made on the estimate it reuses, it
+ * kept dim estimates (wide support) and diluted bright ones (narrow
+ * support), and a caustic read 10 % dark. */
 #define PX_SLOTS 4
 typedef struct pxslot {
 	uint32_t key;         /* a patch number */
@@ -121,7 +121,8 @@ first_estimate(const ctx *c, void *sc, const pm_hit *h, pm_vec3 n, pm_vec3 ns, p
 	if (!sl) {
 		/* The footprint's area: the pixel's angle at distance t,
 		 * squared, stretched by the obliquity (capped, for grazing
-		 * views); the support's: (2 size)^2, a cube's cross-section. */
+		 * views); the support's: (2 disc)^2, the square around a disc
+		 * as large as the support. */
 		float cosv = fabsf(pm_dot(n, wo));
 		float w = h->t * c->pixel_angle;
 		int ok = w * w / (cosv > 0.05f ? cosv : 0.05f) <= 4.0f * info->disc * info->disc;
