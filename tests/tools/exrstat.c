@@ -39,10 +39,9 @@ main(int argc, char **argv)
 		return 1;
 	}
 	for (int c = 0; c < 3; c++) {
-		if (layer && !strcmp(layer, "size"))
-			snprintf(names[c], sizeof names[c], "size");
-		else if (layer && !strcmp(layer, "count"))
-			snprintf(names[c], sizeof names[c], "count");
+		/* pm-render's one-channel layers. */
+		if (layer && (!strcmp(layer, "size") || !strcmp(layer, "count") || !strcmp(layer, "edge")))
+			snprintf(names[c], sizeof names[c], "%s", layer);
 		else
 			snprintf(names[c], sizeof names[c], "%s%s%c", layer ? layer : "", layer ? "." : "", "RGB"[c]);
 		if (!(ch[c] = pm_image_chan(&img, names[c]))) {
