@@ -109,7 +109,6 @@ typedef struct cpoly {
 	int nfc;               /* ... the first nfc lying on its plane */
 	int s0, ns;            /* sample points kept: the ndyn first, then
 	                          those covered for every direction */
-	pm_dvec3 t1, t2;       /* unit axes in its plane (sc->sab's) */
 	int ncell;             /* cells its area was shared among */
 	int unseen;            /* a solid's face turned away from x': not seen */
 	int lit;               /* faces some photon used: else nothing of it counts,
@@ -167,7 +166,6 @@ struct pm_comp_scratch {
 	int ovcap;
 	int *sf;               /* a covered sample's fate, the same for every
 	                          direction (unused for dynamic ones) */
-	double *sab;           /* a dynamic sample's t1 and t2 coordinates */
 	int nsp, spcap;
 	pm_dvec3 *pyr;         /* one polygon's pyramid from x' (pyramid()) */
 	double *pl;            /* the polygons' planes, one array per number
@@ -255,7 +253,6 @@ pm_comp_scratch_free(pm_comp_scratch *sc)
 	free(sc->bl);
 	free(sc->sp);
 	free(sc->sf);
-	free(sc->sab);
 	free(sc->ov);
 	free(sc->pyr);
 	free(sc->pl);
@@ -290,9 +287,6 @@ grow_samples(pm_comp_scratch *sc, int need)
 		return 0;
 	cap = sc->spcap;
 	if (!pm_grow((void **)&sc->sf, &cap, sc->nsp, need, sizeof *sc->sf))
-		return 0;
-	cap = sc->spcap;
-	if (!pm_grow((void **)&sc->sab, &cap, sc->nsp, need, 2 * sizeof *sc->sab))
 		return 0;
 	sc->spcap = cap;
 	return 1;
@@ -558,43 +552,19 @@ fates_hit(const pm_comp_scratch *sc, const cpoly *P, const int *cand, int nc, pm
 	double best[GRID * GRID];
 	int f[GRID * GRID], hit = 0, n = P->ndyn;
 	const pm_dvec3 *y = sc->sp + P->s0;
-	const double *ab = sc->sab + 2 * P->s0;
-	double cp = pm_ddot(P->N, psi), k1 = 0, k2 = 0;
 
 	for (int s = 0; s < n; s++) {
 		best[s] = INFINITY;
 		f[s] = -1;
 	}
-	/* A point y of P whose ray meets B lies within B's sphere (grown by
-	 * in_box()'s eps) of the line through B's centre along psi: inside
-	 * that cylinder's cut with P's plane, whose extent along P's axes
-	 * t1 and t2 is R sqrt(1 + k^2) about where the line meets the plane.
-	 * Points outside that box are passed over; the rest are asked as
-	 * before, so the answers are meets()'s. (Margins far above rounding;
-	 * a ray nearly along P's plane is not filtered.) */
-	int filt = fabs(cp) >= 1e-2;
-	if (filt) {
-		k1 = pm_ddot(P->t1, psi) / cp;
-		k2 = pm_ddot(P->t2, psi) / cp;
-	}
 	for (int i = 0; i < nc; i++) {
 		const cpoly *B = &sc->g[IDX(cand[i])];
-		double d = pm_ddot(B->N, psi), ac = 0, bc = 0, w1 = INFINITY, w2 = INFINITY;
+		double d = pm_ddot(B->N, psi);
 		if (fabs(d) < 1e-9)
 			continue;
 		int fb = (cand[i] & MATTER) && d < 0 ? -1 : 2 * B->obj + (d > 0);
-		if (filt) {
-			pm_dvec3 cq = pm_dadd(B->c, pm_dscale(psi, (P->d - pm_ddot(P->N, B->c)) / cp));
-			double R = (B->rad + 2 * eps) * (1 + 1e-6);
-			ac = pm_ddot(P->t1, cq);
-			bc = pm_ddot(P->t2, cq);
-			w1 = R * sqrt(1 + k1 * k1) + 1e-3 * eps;
-			w2 = R * sqrt(1 + k2 * k2) + 1e-3 * eps;
-		}
 		for (int s = 0; s < n; s++) {
 			double t;
-			if (fabs(ab[2 * s] - ac) > w1 || fabs(ab[2 * s + 1] - bc) > w2)
-				continue;
 			if (meets(sc, B, d, y[s], psi, eps, best[s], &t)) {
 				best[s] = t;
 				f[s] = fb;
@@ -1363,8 +1333,6 @@ sample(pm_comp_scratch *sc, cpoly *P, pm_dvec3 xo, double h, double eps)
 	t1 = pm_dsub(t1, pm_dscale(P->N, pm_ddot(t1, P->N)));
 	t1 = pm_dscale(t1, 1 / pm_dlen(t1));
 	t2 = pm_dcross(P->N, t1);
-	P->t1 = t1;
-	P->t2 = t2;
 	double va[ROW_MAX_VERTS], vb[ROW_MAX_VERTS];
 	int rows = P->convex && P->nv <= ROW_MAX_VERTS;
 	for (int i = 0; i < P->nv; i++) {
@@ -1433,11 +1401,8 @@ sample(pm_comp_scratch *sc, cpoly *P, pm_dvec3 xo, double h, double eps)
 		}
 		if (f == -1)
 			nopen++;
-		else if (f == -2) {
-			sc->sab[2 * (P->s0 + P->ndyn)] = pm_ddot(t1, sc->sp[i]);
-			sc->sab[2 * (P->s0 + P->ndyn) + 1] = pm_ddot(t2, sc->sp[i]);
+		else if (f == -2)
 			sc->sp[P->s0 + P->ndyn++] = sc->sp[i];
-		}
 		else {
 			sc->sf[P->s0 + G * G + ncov] = f;
 			sc->sp[P->s0 + G * G + ncov++] = sc->sp[i];
