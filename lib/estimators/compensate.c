@@ -139,6 +139,12 @@ typedef struct cgroup {
 	double lo[3], hi[3];   /* its box */
 	pm_dvec3 V;            /* sum of A Ne over polygons not parallel to n */
 	double apar;           /* sum of A over those parallel, facing n */
+	/* A sheet that is not simple: V and apar over its plain polygons
+	 * (seen whole, open fates, like a simple sheet's), and the others,
+	 * sc->gq[q0 .. q0 + nq), asked one by one. */
+	pm_dvec3 Vp;
+	double aparp;
+	int q0, nq;
 } cgroup;
 
 struct pm_comp_scratch {
@@ -181,6 +187,8 @@ struct pm_comp_scratch {
 	int htcap;
 	int *gm;               /* groups that may hold one photon */
 	int gmcap;
+	int *gq;               /* the polygons of sheets not plain (cgroup) */
+	int gqcap;
 	int *mark;             /* per polygon: on the list being closed, or found
 	                          in the sight grid, if stamp */
 	int markcap, marked, stamp;
@@ -261,6 +269,7 @@ pm_comp_scratch_free(pm_comp_scratch *sc)
 	free(sc->gp);
 	free(sc->ht);
 	free(sc->gm);
+	free(sc->gq);
 	free(sc->mark);
 	pm_sight_grid_free(&sc->grid);
 	free(sc->cand);
@@ -1615,13 +1624,28 @@ weights(const pm_polyindex *pi, pm_vec3 x, pm_vec3 n,
 				z.cast += sc->g[a].cast;
 			}
 	}
-	for (int G = 0; G < sc->ngr; G++) {
+	if (!pm_grow((void **)&sc->gq, &sc->gqcap, 0, sc->ng, sizeof *sc->gq))
+		goto out;
+	for (int G = 0, nq = 0; G < sc->ngr; G++) {
 		cgroup *Gr = &sc->gr[G];
 		Gr->simple = Gr->sheet;
 		for (int gi = Gr->p0; gi < Gr->p0 + Gr->np && Gr->simple; gi++) {
 			const cpoly *P = &sc->g[sc->gp[gi]];
 			Gr->simple = !P->unseen && P->nr == 0 && P->nf == 0;
 		}
+		Gr->Vp = pm_dv3(0, 0, 0);
+		Gr->aparp = 0;
+		Gr->q0 = nq;
+		for (int gi = Gr->p0; gi < Gr->p0 + Gr->np && Gr->sheet && !Gr->simple; gi++) {
+			const cpoly *P = &sc->g[sc->gp[gi]];
+			if (P->unseen || P->nr > 0 || P->nf > 0)
+				sc->gq[nq++] = sc->gp[gi];
+			else if (P->xpar)
+				Gr->aparp += pm_ddot(P->Ne, nd) > 0 ? P->A : 0;
+			else
+				Gr->Vp = pm_dadd(Gr->Vp, pm_dscale(P->Ne, P->A));
+		}
+		Gr->nq = nq - Gr->q0;
 	}
 
 	/* Which photons count: each lies on a polygon of the cube, on the side
@@ -1729,8 +1753,19 @@ weights(const pm_polyindex *pi, pm_vec3 x, pm_vec3 n,
 				}
 				continue;
 			}
-			for (int gi = Gr->p0; gi < Gr->p0 + Gr->np; gi++) {
-				const cpoly *P = &sc->g[sc->gp[gi]];
+			/* A sheet facing psi whole: its plain polygons at once (as a
+			 * simple sheet's; nothing where x's ray is not open), the
+			 * rest one by one. */
+			const int *gl = sc->gp + Gr->p0;
+			int gn = Gr->np;
+			if (Gr->sheet && pm_ddot(psi, Gr->M) > Gr->sina + 1e-9) {
+				if (sc->fx[j] < 0)
+					A += c * Gr->aparp + pm_ddot(psi, Gr->Vp);
+				gl = sc->gq + Gr->q0;
+				gn = Gr->nq;
+			}
+			for (int gi = 0; gi < gn; gi++) {
+				const cpoly *P = &sc->g[gl[gi]];
 				double f = facing(P, psi, c, nd), s = 0;
 				if (!(f > 0) || P->unseen)
 					continue;
