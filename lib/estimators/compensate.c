@@ -1168,11 +1168,13 @@ pair_lists(pm_comp_scratch *sc, const unsigned char *cvx, pm_dvec3 xo, pm_dvec3 
 			sc->gmk[G] = 0;
 	}
 	int built = 0;
-	int xobj[4], nxobj = 0;
+	int xobj[4], nxobj = 0, mixed = 0;
 
-	for (int b = 0; b < ng; b++)
+	for (int b = 0; b < ng; b++) {
 		if (sc->g[b].xon && nxobj < 4)
 			xobj[nxobj++] = sc->g[b].obj;
+		mixed |= sc->g[b].obj != sc->g[0].obj;
+	}
 	double *plsx = sc->pl;
 	for (int b = 0; b < ng; b++)
 		plsx[b] = pm_ddot(sc->g[b].N, xo) - sc->g[b].d;
@@ -1242,8 +1244,9 @@ pair_lists(pm_comp_scratch *sc, const unsigned char *cvx, pm_dvec3 xo, pm_dvec3 
 		 * other objects' polygons that the sight grid gave (all, for a wide
 		 * box) are tried: a polygon covering a point of P that x' sees is
 		 * seen in the same direction, and cover matters only where x' sees
-		 * (sample()); a mesh that covers itself is left out. */
-		for (int k = 0; !follow && P->lit && !P->unseen && k < (nc < 0 ? ng : nc); k++) {
+		 * (sample()); a mesh that covers itself is left out, so a cube of
+		 * one object's polygons has nothing to try. */
+		for (int k = 0; !follow && mixed && P->lit && !P->unseen && k < (nc < 0 ? ng : nc); k++) {
 			int b = nc < 0 ? k : sc->cand[k];
 			const cpoly *B = &sc->g[b];
 			double lo, hi;
