@@ -138,10 +138,9 @@ tex_free(pm_texfilter *f)
 }
 
 static int
-tex_lookup(pm_texfilter *f, float s, float t, float dsdx, float dtdx, float dsdy,
-                    float dtdy, float rgb[3])
+tex_lookup(pm_texfilter *f, float s, float t, float dsdx, float dtdx, float dsdy, float dtdy,
+           float rgb[3])
 {
-	rgb[0] = rgb[1] = rgb[2] = 0;
 	try {
 		OIIO::TextureOpt opt;
 		opt.swrap = opt.twrap = OIIO::TextureOpt::WrapPeriodic;

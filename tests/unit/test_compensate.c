@@ -1236,23 +1236,21 @@ TEST(full_estimate_matches_core)
 TEST(support_discs_agree)
 {
 	tscene t;
+	tphotons p = {0};
 	pm_rng r = pm_rng_seed(29, 0);
 	ts_init(&t);
 	int o = ts_object(&t, 0, 0);
 	ts_rect(&t, o, pm_v3(-4, -4, 0), pm_v3(8, 0, 0), pm_v3(0, 8, 0));
 	pm_polyindex *pi = index_of(&t);
-	int n = 40000;
+	tp_rect(&p, &t, 0, 40000, unit(0.3, -0.2, 1), &r, 0);
 	pm_photons map;
 	memset(&map, 0, sizeof map);
-	map.p = malloc((size_t)n * sizeof *map.p);
-	map.h.count = (uint64_t)n;
-	map.h.emitted = (uint64_t)n;
-	for (int i = 0; i < n; i++) {
-		pm_vec3 pos = pm_v3(-4 + 8 * pm_rng_f(&r), -4 + 8 * pm_rng_f(&r), 0);
-		pm_photon_pack(&map.p[i], pos, unit(0.3, -0.2, 1), UP, pm_v3(1, 1, 1));
-	}
+	map.p = malloc(p.n * sizeof *map.p);
+	map.h.count = map.h.emitted = (uint64_t)p.n;
+	for (int i = 0; i < p.n; i++)
+		pm_photon_pack(&map.p[i], p.pos[i], p.dir[i], UP, pm_v3(1, 1, 1));
 	pm_error err;
-	CHECK(pm_kd_build(map.p, (size_t)n, &err) == 0);
+	CHECK(pm_kd_build(map.p, p.n, &err) == 0);
 	pm_comp_scratch *sc = pm_comp_scratch_new(K);
 	pm_nn *nn = malloc(K * sizeof *nn);
 	double sum = 0, sumh = 0;
@@ -1274,6 +1272,7 @@ TEST(support_discs_agree)
 	free(nn);
 	pm_comp_scratch_free(sc);
 	free(map.p);
+	tp_free(&p);
 	pm_polyindex_free(pi);
 }
 
