@@ -192,6 +192,9 @@ struct pm_comp_scratch {
 	int *mark;             /* per polygon: on the list being closed, or found
 	                          in the sight grid, if stamp */
 	int markcap, marked, stamp;
+	int *omark;            /* per scene object: a solid of the list being
+	                          closed, if stamp */
+	int omarkcap;
 	pm_sight_grid grid;
 	int *cand;             /* polygons the grid gave for one P, then
 	                          those off its plane in its F list */
@@ -271,6 +274,7 @@ pm_comp_scratch_free(pm_comp_scratch *sc)
 	free(sc->gm);
 	free(sc->gq);
 	free(sc->mark);
+	free(sc->omark);
 	pm_sight_grid_free(&sc->grid);
 	free(sc->cand);
 	free(sc->gmk);
@@ -794,6 +798,8 @@ groups(pm_comp_scratch *sc, const uint32_t *patch, pm_dvec3 n)
 	if (sc->stamp > INT_MAX - 2 * ng - 4) {
 		for (int i = 0; i < sc->markcap; i++)
 			sc->mark[i] = 0;
+		for (int i = 0; i < sc->omarkcap; i++)
+			sc->omark[i] = 0;
 		sc->stamp = 0;
 	}
 	cgroup *tent = sc->gr + ng, *sub = sc->gr + 2 * ng;
@@ -956,35 +962,37 @@ may_cover(const pm_comp_scratch *sc, const cpoly *P, const cpoly *B, double eps)
 static void
 close_matter(pm_comp_scratch *sc, int f0, int skip, int sgrp)
 {
-	int n = sc->nbl, objs[8], nobj = 0, st = ++sc->stamp;
+	int n = sc->nbl, nobj = 0, st = ++sc->stamp;
 
 	for (int i = f0; i < n; i++) {
-		int o = sc->g[IDX(sc->bl[i])].obj, k = 0;
+		int o = sc->g[IDX(sc->bl[i])].obj;
 		sc->mark[IDX(sc->bl[i])] = st;
-		if (!(sc->bl[i] & MATTER) || nobj < 0)
+		if (!(sc->bl[i] & MATTER))
 			continue;
-		while (k < nobj && objs[k] != o)
-			k++;
-		if (k == nobj)
-			nobj = nobj < 8 ? (objs[nobj] = o, nobj + 1) : -1;
+		if (o >= sc->omarkcap) {
+			int cap = sc->omarkcap;
+			if (!pm_grow((void **)&sc->omark, &cap, 0, o + 1, sizeof *sc->omark)) {
+				sc->oom = 1;
+				return;
+			}
+			for (int k = sc->omarkcap; k < cap; k++)
+				sc->omark[k] = 0;
+			sc->omarkcap = cap;
+		}
+		nobj += sc->omark[o] != st;
+		sc->omark[o] = st;
 	}
-	/* Only the groups of those solids (past eight of them, every group,
-	 * each polygon asked). */
-	for (int G = 0; G < sc->ngr && nobj != 0; G++) {
+	/* Only the groups of those solids. */
+	for (int G = 0; G < sc->ngr && nobj > 0; G++) {
 		const cgroup *Gr = &sc->gr[G];
-		int o = sc->g[sc->gp[Gr->p0]].obj, k = 0;
-		while (k < nobj && objs[k] != o)
-			k++;
-		if (G == sgrp || (nobj > 0 && k == nobj))
+		int o = sc->g[sc->gp[Gr->p0]].obj;
+		if (G == sgrp || o >= sc->omarkcap || sc->omark[o] != st)
 			continue;
 		for (int gi = Gr->p0; gi < Gr->p0 + Gr->np; gi++) {
-			int b = sc->gp[gi], solid = nobj > 0;
+			int b = sc->gp[gi];
 			if (b == skip || (skip < 0 && sc->g[b].xon) || sc->mark[b] == st)
 				continue;
-			for (int i = f0; i < n && !solid; i++)
-				solid = (sc->bl[i] & MATTER) && sc->g[IDX(sc->bl[i])].obj == o;
-			if (solid)
-				push(sc, b | MATTER);
+			push(sc, b | MATTER);
 		}
 	}
 }
