@@ -3,7 +3,7 @@
  * "no cliff"): estimates at the camera's first photon-surface hits (pixel
  * centres), one thread, each timed alone (thread CPU time).
  *
- *   compcost [-c CAST_AT] [-n PHOTONS] [-k K] [-r RUNS] [-o FILE] SCENE
+ *   compcost [-c CAST_AT] [-n PHOTONS] [-k K] [-r RUNS] [-o FILE] [-p LO,HI] SCENE
  *   compcost -t SCENE      (prints the scene's triangles and stops)
  *
  * Prints "name<TAB>value" lines: the median over RUNS of the mean time per
@@ -14,7 +14,11 @@
  * polygons in its cube, microseconds (compensated, classical), and the
  * compensated RGB, for plots and for comparing two builds estimate by
  * estimate. -c sets the compensated estimate's CAST_AT (pm_comp_cast_at,
- * compensate.h), which changes its time, not its answers. */
+ * compensate.h), which changes its time, not its answers. -p runs the
+ * compensated estimates whose cubes hold LO to HI polygons five times more
+ * in profile_range(), for a profiler to count those alone:
+ *   valgrind --tool=callgrind --collect-atstart=no \
+ *       --toggle-collect=profile_range compcost -r 1 -p 32,100000 SCENE */
 #include <float.h>
 #include <math.h>
 #include <omp.h>
@@ -63,32 +67,56 @@ bin_of(int polys)
 	return b;
 }
 
+/* The compensated estimates sel[0 .. nsel), five times: a function of its
+ * own for a profiler's toggle (-p). */
+__attribute__((noinline)) static double
+profile_range(const pm_polyindex *pi, const pm_photons *ph, const long *sel, long nsel,
+              const pm_vec3 *hx, const pm_vec3 *hn, const pm_vec3 *hw, const pm_material **hm,
+              int k, pm_comp_scratch *sc)
+{
+	pm_estimate_info info;
+	double sink = 0;
+	for (int r = 0; r < 5; r++)
+		for (long i = 0; i < nsel; i++) {
+			long j = sel[i];
+			sink += pm_estimate_compensated(pi, ph, hx[j], hn[j], hw[j], hm[j], k, sc, &info).x;
+		}
+	return sink;
+}
+
 int
 main(int argc, char **argv)
 {
 	long nph = 200000;
 	int k = 50, runs = 3, c, tris_only = 0;
 	const char *out = NULL;
+	int plo = -1, phi = -1;
 	pm_scene s;
 	pm_frame fr;
 	pm_camera cam;
 	pm_error err;
 
-	while ((c = getopt(argc, argv, "c:k:n:o:r:t")) != -1) {
+	while ((c = getopt(argc, argv, "c:k:n:o:p:r:t")) != -1) {
 		switch (c) {
 		case 'c': pm_comp_cast_at = atoi(optarg); break;
 		case 'k': k = atoi(optarg); break;
 		case 'n': nph = atol(optarg); break;
 		case 'o': out = optarg; break;
+		case 'p':
+			if (sscanf(optarg, "%d,%d", &plo, &phi) != 2 || plo < 1 || phi < plo) {
+				fprintf(stderr, "compcost: -p wants LO,HI polygons, 1 <= LO <= HI\n");
+				return 2;
+			}
+			break;
 		case 'r': runs = atoi(optarg); break;
 		case 't': tris_only = 1; break;
 		default:
-			fprintf(stderr, "usage: compcost [-c CAST_AT] [-n PHOTONS] [-k K] [-r RUNS] [-o FILE] SCENE\n");
+			fprintf(stderr, "usage: compcost [-c CAST_AT] [-n PHOTONS] [-k K] [-r RUNS] [-o FILE] [-p LO,HI] SCENE\n");
 			return 2;
 		}
 	}
 	if (argc - optind != 1 || nph < 1 || k < 1 || runs < 1 || runs > 99) {
-		fprintf(stderr, "usage: compcost [-c CAST_AT] [-n PHOTONS] [-k K] [-r RUNS] [-o FILE] SCENE\n");
+		fprintf(stderr, "usage: compcost [-c CAST_AT] [-n PHOTONS] [-k K] [-r RUNS] [-o FILE] [-p LO,HI] SCENE\n");
 		return 2;
 	}
 	const char *path = argv[optind];
@@ -161,6 +189,17 @@ main(int argc, char **argv)
 			nsam[j] = pm_comp_last(sc)->sampled;
 		}
 		tw[i] = cpu_now() - t0;
+	}
+	if (plo > 0) {
+		long *sel = malloc((size_t)ne * sizeof *sel), nsel = 0;
+		if (!sel)
+			die(path, "out of memory");
+		for (long j = 0; j < ne; j++)
+			if (polys[j] >= plo && polys[j] <= phi)
+				sel[nsel++] = j;
+		fprintf(stderr, "compcost: profile_range: %ld estimates of %d to %d polygons, 5 times\n", nsel, plo, phi);
+		sink += profile_range(fr.pi, &ph, sel, nsel, hx, hn, hw, hm, k, sc);
+		free(sel);
 	}
 	/* FNV-1a over the estimates' bits. */
 	uint64_t hsh = 1469598103934665603ull;
