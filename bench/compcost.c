@@ -67,6 +67,13 @@ bin_of(int polys)
 	return b;
 }
 
+static int
+usage(void)
+{
+	fprintf(stderr, "usage: compcost [-c CAST_AT] [-n PHOTONS] [-k K] [-r RUNS] [-o FILE] [-p LO,HI] SCENE\n");
+	return 2;
+}
+
 /* The compensated estimates sel[0 .. nsel), five times: a function of its
  * own for a profiler's toggle (-p). */
 __attribute__((noinline)) static double
@@ -111,13 +118,11 @@ main(int argc, char **argv)
 		case 'r': runs = atoi(optarg); break;
 		case 't': tris_only = 1; break;
 		default:
-			fprintf(stderr, "usage: compcost [-c CAST_AT] [-n PHOTONS] [-k K] [-r RUNS] [-o FILE] [-p LO,HI] SCENE\n");
-			return 2;
+			return usage();
 		}
 	}
 	if (argc - optind != 1 || nph < 1 || k < 1 || runs < 1 || runs > 99) {
-		fprintf(stderr, "usage: compcost [-c CAST_AT] [-n PHOTONS] [-k K] [-r RUNS] [-o FILE] [-p LO,HI] SCENE\n");
-		return 2;
+		return usage();
 	}
 	const char *path = argv[optind];
 	omp_set_num_threads(1);

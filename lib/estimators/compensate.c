@@ -962,7 +962,7 @@ may_cover(const pm_comp_scratch *sc, const cpoly *P, const cpoly *B, double eps)
 static void
 close_matter(pm_comp_scratch *sc, int f0, int skip, int sgrp)
 {
-	int n = sc->nbl, nobj = 0, st = ++sc->stamp;
+	int n = sc->nbl, any = 0, st = ++sc->stamp;
 
 	for (int i = f0; i < n; i++) {
 		int o = sc->g[IDX(sc->bl[i])].obj;
@@ -979,11 +979,11 @@ close_matter(pm_comp_scratch *sc, int f0, int skip, int sgrp)
 				sc->omark[k] = 0;
 			sc->omarkcap = cap;
 		}
-		nobj += sc->omark[o] != st;
 		sc->omark[o] = st;
+		any = 1;
 	}
 	/* Only the groups of those solids. */
-	for (int G = 0; G < sc->ngr && nobj > 0; G++) {
+	for (int G = 0; G < sc->ngr && any; G++) {
 		const cgroup *Gr = &sc->gr[G];
 		int o = sc->g[sc->gp[Gr->p0]].obj;
 		if (G == sgrp || o >= sc->omarkcap || sc->omark[o] != st)
