@@ -85,6 +85,7 @@
  * work that grows with the points, not the pairs. */
 #define CAST_AT 16
 int pm_comp_cast_at = CAST_AT;
+int pm_comp_shadow_from = 6;
 #define IDX(e) ((e) & (FRONT - 1))
 
 typedef struct cpoly {
@@ -172,6 +173,8 @@ struct pm_comp_scratch {
 	int ovcap;
 	int *sf;               /* a covered sample's fate, the same for every
 	                          direction (unused for dynamic ones) */
+	double *sab;           /* a dynamic sample's coordinates along its
+	                          polygon's t1 and t2 (two a sample) */
 	int nsp, spcap;
 	pm_dvec3 *pyr;         /* one polygon's pyramid from x' (pyramid()) */
 	double *pl;            /* the polygons' planes, one array per number
@@ -264,6 +267,7 @@ pm_comp_scratch_free(pm_comp_scratch *sc)
 	free(sc->bl);
 	free(sc->sp);
 	free(sc->sf);
+	free(sc->sab);
 	free(sc->ov);
 	free(sc->pyr);
 	free(sc->pl);
@@ -300,6 +304,9 @@ grow_samples(pm_comp_scratch *sc, int need)
 		return 0;
 	cap = sc->spcap;
 	if (!pm_grow((void **)&sc->sf, &cap, sc->nsp, need, sizeof *sc->sf))
+		return 0;
+	cap = sc->spcap;
+	if (!pm_grow((void **)&sc->sab, &cap, sc->nsp, need, 2 * sizeof *sc->sab))
 		return 0;
 	sc->spcap = cap;
 	return 1;
@@ -503,6 +510,16 @@ seen_many(pm_comp_scratch *sc, const cpoly *P, pm_dvec3 xo, const pm_dvec3 *y, i
 	}
 }
 
+/* The axes sample points are laid along on a plane of unit normal N. */
+static inline void
+plane_axes(pm_dvec3 N, pm_dvec3 *t1, pm_dvec3 *t2)
+{
+	pm_dvec3 t = fabs(N.x) < 0.9 ? pm_dv3(1, 0, 0) : pm_dv3(0, 1, 0);
+	t = pm_dsub(t, pm_dscale(N, pm_ddot(t, N)));
+	*t1 = pm_dscale(t, 1 / pm_dlen(t));
+	*t2 = pm_dcross(N, *t1);
+}
+
 /* fate()'s test of one polygon B (d = N_B . psi, not near 0): 1 if the
  * backward ray from y along psi meets it nearer than best, at distance *t.
  * A hit at distance 0 (a face resting on y's surface) counts; a hit
@@ -560,11 +577,26 @@ fate(const pm_comp_scratch *sc, const int *cand, int nc, pm_dvec3 y, pm_dvec3 ps
  * same way. */
 static int
 fates_hit(const pm_comp_scratch *sc, const cpoly *P, const int *cand, int nc, pm_dvec3 psi,
-          double eps, int fx)
+          double eps, int fx, pm_comp_stats *z)
 {
 	double best[GRID * GRID];
 	int f[GRID * GRID], hit = 0, n = P->ndyn;
 	const pm_dvec3 *y = sc->sp + P->s0;
+	const double *ab = sc->sab + 2 * P->s0;
+	/* A point y meets B only inside B's shadow along psi on P's plane:
+	 * the box (in P's axes, as sample() keeps the points) of B's vertices
+	 * moved along psi onto that plane. meets() lets a hit lie off B's plane
+	 * by up to eps (a point within sqrt(3) eps of B proper), which moves
+	 * its shadow by that times 1 + 1 / |pn|; the box is grown by more than
+	 * twice that, so it only passes over points meets() would refuse, and
+	 * the answers stay the same. Worth its work from a few points on
+	 * (pm_comp_shadow_from). */
+	pm_dvec3 t1 = {0}, t2 = {0};
+	double pn = pm_ddot(P->N, psi), grow = 4 * eps * (1 + 1 / fabs(pn));
+	int cull = n >= pm_comp_shadow_from && fabs(pn) > 1e-3;
+	if (cull)
+		plane_axes(P->N, &t1, &t2);
+	double pa = pm_ddot(psi, t1), pb = pm_ddot(psi, t2);
 
 	for (int s = 0; s < n; s++) {
 		best[s] = INFINITY;
@@ -573,11 +605,33 @@ fates_hit(const pm_comp_scratch *sc, const cpoly *P, const int *cand, int nc, pm
 	for (int i = 0; i < nc; i++) {
 		const cpoly *B = &sc->g[IDX(cand[i])];
 		double d = pm_ddot(B->N, psi);
+		double alo = -INFINITY, ahi = INFINITY, blo = -INFINITY, bhi = INFINITY;
 		if (fabs(d) < 1e-9)
 			continue;
 		int fb = (cand[i] & MATTER) && d < 0 ? -1 : 2 * B->obj + (d > 0);
+		if (cull) {
+			alo = blo = INFINITY;
+			ahi = bhi = -INFINITY;
+			for (int v = B->v0; v < B->v0 + B->nv; v++) {
+				pm_dvec3 q = sc->cv[v];
+				double t = (pm_ddot(P->N, q) - P->d) / pn;
+				double qa = pm_ddot(q, t1) - pa * t, qb = pm_ddot(q, t2) - pb * t;
+				alo = qa < alo ? qa : alo;
+				ahi = qa > ahi ? qa : ahi;
+				blo = qb < blo ? qb : blo;
+				bhi = qb > bhi ? qb : bhi;
+			}
+			alo -= grow;
+			ahi += grow;
+			blo -= grow;
+			bhi += grow;
+		}
 		for (int s = 0; s < n; s++) {
 			double t;
+			if (ab[2 * s] < alo || ab[2 * s] > ahi || ab[2 * s + 1] < blo || ab[2 * s + 1] > bhi) {
+				z->shadowed++;
+				continue;
+			}
 			if (meets(sc, B, d, y[s], psi, eps, best[s], &t)) {
 				best[s] = t;
 				f[s] = fb;
@@ -1349,10 +1403,7 @@ sample(pm_comp_scratch *sc, cpoly *P, pm_dvec3 xo, double h, double eps)
 	/* Twice G x G: the covered ones wait behind while the rest are sorted. */
 	if (!grow_samples(sc, 2 * G * G))
 		return 0;
-	t1 = fabs(P->N.x) < 0.9 ? pm_dv3(1, 0, 0) : pm_dv3(0, 1, 0);
-	t1 = pm_dsub(t1, pm_dscale(P->N, pm_ddot(t1, P->N)));
-	t1 = pm_dscale(t1, 1 / pm_dlen(t1));
-	t2 = pm_dcross(P->N, t1);
+	plane_axes(P->N, &t1, &t2);
 	double va[ROW_MAX_VERTS], vb[ROW_MAX_VERTS];
 	int rows = P->convex && P->nv <= ROW_MAX_VERTS;
 	for (int i = 0; i < P->nv; i++) {
@@ -1380,16 +1431,23 @@ sample(pm_comp_scratch *sc, cpoly *P, pm_dvec3 xo, double h, double eps)
 		for (int j = 0; j < G; j++) {
 			double b = lo2 + (hi2 - lo2) * (j + 0.5) / G;
 			pm_dvec3 p = pm_dadd(base, pm_dadd(pm_dscale(t1, a), pm_dscale(t2, b)));
-			if (rows ? b >= blo && b <= bhi : inside(sc, P, p, 0, 1))
+			if (rows ? b >= blo && b <= bhi : inside(sc, P, p, 0, 1)) {
+				sc->sab[2 * (P->s0 + kept)] = a;
+				sc->sab[2 * (P->s0 + kept) + 1] = b;
 				sc->sp[P->s0 + kept++] = p;
+			}
 		}
 	}
 	if (kept == 0) {
 		pm_dvec3 m = pm_dv3(0, 0, 0);
 		for (int i = 0; i < P->nv; i++)
 			m = pm_dadd(m, sc->cv[P->v0 + i]);
-		sc->sp[P->s0 + kept++] = pm_dscale(m, 1.0 / P->nv);
+		m = pm_dscale(m, 1.0 / P->nv);
+		sc->sab[2 * P->s0] = pm_ddot(m, t1);
+		sc->sab[2 * P->s0 + 1] = pm_ddot(m, t2);
+		sc->sp[P->s0 + kept++] = m;
 	}
+
 	P->ncell = kept;
 	P->ndyn = 0;
 	/* Only samples whose fate is not "open for every direction" cost work
@@ -1421,8 +1479,11 @@ sample(pm_comp_scratch *sc, cpoly *P, pm_dvec3 xo, double h, double eps)
 		}
 		if (f == -1)
 			nopen++;
-		else if (f == -2)
+		else if (f == -2) {
+			sc->sab[2 * (P->s0 + P->ndyn)] = sc->sab[2 * i];
+			sc->sab[2 * (P->s0 + P->ndyn) + 1] = sc->sab[2 * i + 1];
 			sc->sp[P->s0 + P->ndyn++] = sc->sp[i];
+		}
 		else {
 			sc->sf[P->s0 + G * G + ncov] = f;
 			sc->sp[P->s0 + G * G + ncov++] = sc->sp[i];
@@ -1818,7 +1879,7 @@ weights(const pm_polyindex *pi, pm_vec3 x, pm_vec3 n,
 					A += f * dmax(0, s);
 					continue;
 				}
-				int hit = nc > 0 ? fates_hit(sc, P, cand, nc, psi, eps, sc->fx[j]) : 0;
+				int hit = nc > 0 ? fates_hit(sc, P, cand, nc, psi, eps, sc->fx[j], &z) : 0;
 				for (int t = P->s0 + P->ndyn; t < P->s0 + P->ns; t++)
 					hit += sc->sf[t] == sc->fx[j];
 				/* An unsampled polygon has no cells (ncell 0): hit is 0 there,

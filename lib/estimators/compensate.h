@@ -97,6 +97,8 @@ typedef struct pm_comp_stats {
 	int cast;        /* of those, with so many that may hide them that what x'
 	                    sees of them is found through a tree (pm_comp_cast_at) */
 	int closed;      /* 1 if the cube was closed (see above) */
+	long shadowed;   /* sample points a photon's fate test passed over
+	                    (outside a polygon's shadow; pm_comp_shadow_from) */
 } pm_comp_stats;
 
 /* The per-photon weights of eq. 3 for m photons already found around x:
@@ -125,6 +127,14 @@ void pm_comp_weights_cube(const pm_polyindex *pi, pm_vec3 x, pm_vec3 n,
  * (the sampling asks whether there are more than 8); INT_MAX keeps every
  * list. For tests and benchmarks, set before any estimate runs. */
 extern int pm_comp_cast_at;
+
+/* From this many sample points of a polygon whose fate depends on the
+ * direction, each photon's test of them against a polygon B passes over the
+ * points outside B's shadow along the photon's direction (a box on the
+ * polygon's plane), where the test would fail: the same answer for less
+ * work (compensate.c, fates_hit()). 6 unless changed; INT_MAX tests every
+ * point. For tests and benchmarks, set before any estimate runs. */
+extern int pm_comp_shadow_from;
 
 /* The statistics of the last pm_estimate_compensated call with sc. */
 const pm_comp_stats *pm_comp_last(const pm_comp_scratch *sc);

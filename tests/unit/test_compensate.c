@@ -1572,6 +1572,74 @@ TEST(short_paths_match_the_general_one)
 	}
 }
 
+/* The weights of 20 estimates on the floor of t (photons from a cosine
+ * sky over it), each made twice: with set(0), then with set(1) in force.
+ * Counts the estimates whose weights (or counts of hidden, skipped and
+ * sampled polygons) differ, and sums the second runs' statistics; the
+ * first runs' must be nought where set(0) turns a path off. */
+typedef struct twins {
+	int differ, minpolys;
+	long cast[2], shadowed[2];
+} twins;
+
+static twins
+twin_weights(tscene *t, uint64_t seed, void (*set)(int))
+{
+	static double w1[K], w2[K];
+	static int idx[4096];
+	static pm_vec3 pos[4096], dir[4096];
+	twins tw = {.minpolys = INT_MAX};
+	tphotons p = {.flux = 1e-3};
+	pm_rng r = pm_rng_seed(seed, 0);
+	for (int i = 0; i < 4000; i++)
+		tp_rect(&p, t, 0, 1, pm_sample_cosine(UP, pm_rng_f(&r), pm_rng_f(&r)), &r, 0);
+	pm_polyindex *pi = index_of(t);
+	pm_comp_scratch *sc = pm_comp_scratch_new(K);
+	for (int q = 0; q < 20; q++) {
+		pm_vec3 x = pm_v3((float)(0.06 * rnd(&r) - 0.03), (float)(0.06 * rnd(&r) - 0.03), 0);
+		pm_comp_stats st1, st2;
+		double dfar, s1 = 0;
+		int n = knn(&p, x, K, linf, idx, &dfar), same = 1;
+		for (int a = 0; a < n; a++) {
+			pos[a] = p.pos[idx[a]];
+			dir[a] = p.dir[idx[a]];
+		}
+		set(0);
+		pm_comp_weights(pi, x, UP, pos, dir, n, 0, sc, w1, &st1);
+		set(1);
+		pm_comp_weights(pi, x, UP, pos, dir, n, 0, sc, w2, &st2);
+		for (int a = 0; a < n; a++) {
+			s1 += w1[a];
+			same &= w1[a] == w2[a];
+		}
+		tw.differ += !(s1 > 0 && same && st1.hidden == st2.hidden && st1.skipped == st2.skipped &&
+		               st1.sampled == st2.sampled);
+		tw.minpolys = st1.polys < tw.minpolys ? st1.polys : tw.minpolys;
+		tw.cast[0] += st1.cast;
+		tw.cast[1] += st2.cast;
+		tw.shadowed[0] += st1.shadowed;
+		tw.shadowed[1] += st2.shadowed;
+	}
+	set(-1);
+	pm_comp_scratch_free(sc);
+	pm_polyindex_free(pi);
+	tp_free(&p);
+	return tw;
+}
+
+/* -1: the default. */
+static void
+set_cast_at(int on)
+{
+	pm_comp_cast_at = on < 0 ? 16 : on ? 9 : INT_MAX;
+}
+
+static void
+set_shadow_from(int on)
+{
+	pm_comp_shadow_from = on < 0 ? 6 : on ? 1 : INT_MAX;
+}
+
 /* A polygon of a large cube with many that may hide it keeps no list, and
  * what x' sees of it is found through a tree (pm_comp_cast_at): the
  * weights must be the very same as with every list kept, on a floor under
@@ -1580,51 +1648,36 @@ TEST(short_paths_match_the_general_one)
 TEST(tree_sees_what_the_lists_see)
 {
 	static tscene t;
-	static double w1[K], w2[K];
-	int casts = 0;
+	long casts = 0;
 	for (int ntri = 60; ntri <= 150; ntri += 90) {
-		tphotons p = {0};
-		pm_rng r = pm_rng_seed(33, (uint64_t)ntri);
 		floor_under_cloud(&t, 0, ntri, 0.06);
-		p.flux = 1e-3;
-		for (int i = 0; i < 4000; i++)
-			tp_rect(&p, &t, 0, 1, pm_sample_cosine(UP, pm_rng_f(&r), pm_rng_f(&r)), &r, 0);
-		pm_polyindex *pi = index_of(&t);
-		pm_comp_scratch *sc = pm_comp_scratch_new(K);
-		for (int q = 0; q < 20; q++) {
-			pm_vec3 x = pm_v3((float)(0.06 * rnd(&r) - 0.03), (float)(0.06 * rnd(&r) - 0.03), 0);
-			static int idx[4096];
-			static pm_vec3 pos[4096], dir[4096];
-			pm_comp_stats st1, st2;
-			double dfar;
-			int n = knn(&p, x, K, linf, idx, &dfar), same = 1;
-			for (int a = 0; a < n; a++) {
-				pos[a] = p.pos[idx[a]];
-				dir[a] = p.dir[idx[a]];
-			}
-			pm_comp_cast_at = INT_MAX;
-			pm_comp_weights(pi, x, UP, pos, dir, n, 0, sc, w1, &st1);
-			pm_comp_cast_at = 9;
-			pm_comp_weights(pi, x, UP, pos, dir, n, 0, sc, w2, &st2);
-			double s1 = 0;
-			for (int a = 0; a < n; a++) {
-				s1 += w1[a];
-				same &= w1[a] == w2[a];
-			}
-			casts += st2.cast;
-			CHECKF(st1.cast == 0 && st1.polys >= 32, "cloud %d, query %d: %d polygons, %d cast",
-			       ntri, q, st1.polys, st1.cast);
-			CHECKF(s1 > 0 && same && st1.hidden == st2.hidden && st1.skipped == st2.skipped &&
-			       st1.sampled == st2.sampled,
-			       "cloud %d, query %d: weights differ (sum %.12g), hidden %d, %d", ntri, q, s1,
-			       st1.hidden, st2.hidden);
-		}
-		pm_comp_cast_at = 16;
-		pm_comp_scratch_free(sc);
-		pm_polyindex_free(pi);
-		tp_free(&p);
+		twins tw = twin_weights(&t, 33 + (uint64_t)ntri, set_cast_at);
+		casts += tw.cast[1];
+		CHECKF(tw.cast[0] == 0 && tw.minpolys >= 32, "cloud %d: %d polygons, %ld cast", ntri,
+		       tw.minpolys, tw.cast[0]);
+		CHECKF(tw.differ == 0, "cloud %d: weights differ in %d of 20 estimates", ntri, tw.differ);
 	}
-	CHECKF(casts > 40, "only %d polygons went through the tree", casts);
+	CHECKF(casts > 40, "only %ld polygons went through the tree", casts);
+}
+
+/* A photon's fate test passes over the sample points outside a polygon's
+ * shadow (pm_comp_shadow_from): the weights must be the very same as
+ * testing every point, under clouds of 60 triangles of two sizes (fates
+ * followed, many points whose fate depends on the direction), and points
+ * must have been passed over. */
+TEST(shadow_box_drops_no_hit)
+{
+	static tscene t;
+	long shadowed = 0;
+	for (int c = 0; c < 2; c++) {
+		floor_under_cloud(&t, 0, 60, c ? 0.02 : 0.06);
+		twins tw = twin_weights(&t, 35 + (uint64_t)c, set_shadow_from);
+		shadowed += tw.shadowed[1];
+		CHECKF(tw.shadowed[0] == 0 && tw.minpolys > 1, "cloud %d: %d polygons, %ld passed over", c,
+		       tw.minpolys, tw.shadowed[0]);
+		CHECKF(tw.differ == 0, "cloud %d: weights differ in %d of 20 estimates", c, tw.differ);
+	}
+	CHECKF(shadowed > 10000, "only %ld sample points passed over", shadowed);
 }
 
 int
@@ -1654,5 +1707,6 @@ main(void)
 	RUN(floor_twice_under_many_groups);
 	RUN(short_paths_match_the_general_one);
 	RUN(tree_sees_what_the_lists_see);
+	RUN(shadow_box_drops_no_hit);
 	return check_done();
 }
