@@ -175,6 +175,11 @@ struct pm_comp_scratch {
 	                          direction (unused for dynamic ones) */
 	double *sab;           /* a dynamic sample's coordinates along its
 	                          polygon's t1 and t2 (two a sample) */
+	int *gapat;            /* per entry of sc->bl: where in gap its gaps
+	                          are, or -1 before reach() first asks */
+	double *gap;           /* B's d - N_B . v, for P's vertices v: the same
+	                          for every photon (reach()) */
+	int gapatcap, gapcap, ngap;
 	int nsp, spcap;
 	pm_dvec3 *pyr;         /* one polygon's pyramid from x' (pyramid()) */
 	double *pl;            /* the polygons' planes, one array per number
@@ -268,6 +273,8 @@ pm_comp_scratch_free(pm_comp_scratch *sc)
 	free(sc->sp);
 	free(sc->sf);
 	free(sc->sab);
+	free(sc->gapat);
+	free(sc->gap);
 	free(sc->ov);
 	free(sc->pyr);
 	free(sc->pl);
@@ -643,11 +650,29 @@ fates_hit(const pm_comp_scratch *sc, const cpoly *P, const int *cand, int nc, pm
 	return hit;
 }
 
+/* B->d - N_B . v for P's vertices v, B being the entry e of sc->bl (on P's
+ * list): worked out when first asked in an estimate, kept for its other
+ * photons; NULL if there is no room. */
+static const double *
+gaps(pm_comp_scratch *sc, const cpoly *P, const cpoly *B, int e)
+{
+	if (sc->gapat[e] < 0) {
+		if (!pm_grow((void **)&sc->gap, &sc->gapcap, sc->ngap, P->nv, sizeof *sc->gap))
+			return NULL;
+		for (int i = 0; i < P->nv; i++)
+			sc->gap[sc->ngap + i] = B->d - pm_ddot(B->N, sc->cv[P->v0 + i]);
+		sc->gapat[e] = sc->ngap;
+		sc->ngap += P->nv;
+	}
+	return sc->gap + sc->gapat[e];
+}
+
 /* 1 if a backward ray along psi from some point of P may meet B: the box
  * of P's vertices moved along psi onto B's plane (a point that would move
  * backwards stays put) meets B's box. */
 static int
-reach(const pm_comp_scratch *sc, const cpoly *P, const cpoly *B, pm_dvec3 psi, double eps)
+reach(const pm_comp_scratch *sc, const cpoly *P, const cpoly *B, const double *gv, pm_dvec3 psi,
+      double eps)
 {
 	double dn = pm_ddot(B->N, psi), lo[3] = {INFINITY, INFINITY, INFINITY};
 	double hi[3] = {-INFINITY, -INFINITY, -INFINITY};
@@ -657,7 +682,7 @@ reach(const pm_comp_scratch *sc, const cpoly *P, const cpoly *B, pm_dvec3 psi, d
 		return 0;
 	for (int i = 0; i < P->nv; i++) {
 		pm_dvec3 v = sc->cv[P->v0 + i];
-		double gap = B->d - pm_ddot(B->N, v), t = gap / dn;
+		double gap = gv[i], t = gap / dn;
 		if (t < 0) {
 			if (fabs(gap) > eps)
 				t = 0;
@@ -1696,8 +1721,12 @@ weights(const pm_polyindex *pi, pm_vec3 x, pm_vec3 n,
 				z.cast += sc->g[a].cast;
 			}
 	}
-	if (!pm_grow((void **)&sc->gq, &sc->gqcap, 0, sc->ng, sizeof *sc->gq))
+	if (!pm_grow((void **)&sc->gq, &sc->gqcap, 0, sc->ng, sizeof *sc->gq) ||
+	    !pm_grow((void **)&sc->gapat, &sc->gapatcap, 0, sc->nbl, sizeof *sc->gapat))
 		goto out;
+	for (int e = 0; e < sc->nbl; e++)
+		sc->gapat[e] = -1;
+	sc->ngap = 0;
 	for (int G = 0, nq = 0; G < sc->ngr; G++) {
 		cgroup *Gr = &sc->gr[G];
 		Gr->simple = Gr->sheet;
@@ -1857,7 +1886,10 @@ weights(const pm_polyindex *pi, pm_vec3 x, pm_vec3 n,
 					double al = pm_ddot(wv, psi), rr = P->rad + B->rad + 2 * eps;
 					if (al < -rr || pm_ddot(wv, wv) - al * al > rr * rr)
 						continue;
-					if (reach(sc, P, B, psi, eps))
+					const double *gv = gaps(sc, P, B, P->f0 + b);
+					if (!gv)
+						goto out;
+					if (reach(sc, P, B, gv, psi, eps))
 						cand[nc++] = sc->bl[P->f0 + b];
 				}
 				if (nc == 0 && sc->fx[j] < 0) {
