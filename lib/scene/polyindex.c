@@ -248,6 +248,23 @@ overlaps(const float *lo, const float *hi, const float q[6])
 	    && lo[2] <= q[5] && hi[2] >= q[2];
 }
 
+/* nextafterf(x, dir * INFINITY), dir = -1 or 1, inlined for finite x:
+ * libm's is a call, made six times an estimate. */
+static inline float
+step_float(float x, int dir)
+{
+	uint32_t b;
+
+	if (!isfinite(x))
+		return nextafterf(x, dir * INFINITY);
+	if (x == 0)
+		return dir * 0x1p-149f;
+	memcpy(&b, &x, sizeof b);
+	b += (x > 0) == (dir > 0) ? 1 : (uint32_t)-1;
+	memcpy(&x, &b, sizeof x);
+	return x;
+}
+
 void
 pm_polyindex_cube(const pm_polyindex *pi, pm_dvec3 c, double h,
                   pm_polyindex_fn fn, void *ctx)
@@ -262,8 +279,8 @@ pm_polyindex_cube(const pm_polyindex *pi, pm_dvec3 c, double h,
 	/* Round the cube outward to float so that float boxes that touch the
 	 * exact cube always pass. */
 	for (int k = 0; k < 3; k++) {
-		q[k] = nextafterf((float)(cc[k] - h), -INFINITY);
-		q[3 + k] = nextafterf((float)(cc[k] + h), INFINITY);
+		q[k] = step_float((float)(cc[k] - h), -1);
+		q[3 + k] = step_float((float)(cc[k] + h), 1);
 	}
 	stack[top++] = 0;
 	while (top > 0) {
