@@ -173,8 +173,8 @@ struct pm_comp_scratch {
 	int ovcap;
 	int *sf;               /* a covered sample's fate, the same for every
 	                          direction (unused for dynamic ones) */
-	double *sab;           /* a dynamic sample's coordinates along its
-	                          polygon's t1 and t2 (two a sample) */
+	double *sab;           /* a sample's coordinates along its polygon's
+	                          plane_axes() (two a sample), for fates_hit() */
 	int *gapat;            /* per entry of sc->bl: where in gap its gaps
 	                          are, or -1 before reach() first asks */
 	double *gap;           /* B's d - N_B . v, for P's vertices v: the same
@@ -591,13 +591,13 @@ fates_hit(const pm_comp_scratch *sc, const cpoly *P, const int *cand, int nc, pm
 	const pm_dvec3 *y = sc->sp + P->s0;
 	const double *ab = sc->sab + 2 * P->s0;
 	/* A point y meets B only inside B's shadow along psi on P's plane:
-	 * the box (in P's axes, as sample() keeps the points) of B's vertices
-	 * moved along psi onto that plane. meets() lets a hit lie off B's plane
-	 * by up to eps (a point within sqrt(3) eps of B proper), which moves
-	 * its shadow by that times 1 + 1 / |pn|; the box is grown by more than
-	 * twice that, so it only passes over points meets() would refuse, and
-	 * the answers stay the same. Worth its work from a few points on
-	 * (pm_comp_shadow_from). */
+	 * the box (in P's plane_axes(), as sample() keeps the points) of B's
+	 * vertices moved along psi onto that plane. meets() lets a hit lie off
+	 * B's plane by up to eps (a point within sqrt(3) eps of B proper),
+	 * which moves its shadow by that times 1 + 1 / |pn|; the box is grown
+	 * by more than twice that, so it only passes over points meets() would
+	 * refuse, and the answers stay the same. Worth its work from a few
+	 * points on (pm_comp_shadow_from). */
 	pm_dvec3 t1 = {0}, t2 = {0};
 	double pn = pm_ddot(P->N, psi), grow = 4 * eps * (1 + 1 / fabs(pn));
 	int cull = n >= pm_comp_shadow_from && fabs(pn) > 1e-3;
@@ -1472,7 +1472,6 @@ sample(pm_comp_scratch *sc, cpoly *P, pm_dvec3 xo, double h, double eps)
 		sc->sab[2 * P->s0 + 1] = pm_ddot(m, t2);
 		sc->sp[P->s0 + kept++] = m;
 	}
-
 	P->ncell = kept;
 	P->ndyn = 0;
 	/* Only samples whose fate is not "open for every direction" cost work
