@@ -1104,6 +1104,20 @@ skip_group(const pm_comp_scratch *sc, const unsigned char *cvx, const cpoly *P, 
  * from x' meets both (sight.h), B's plane between x' and part of P, and B
  * within P's pyramid from x' (between()). plsx holds each plane's
  * N . x' - d; own says x lies on P's solid. */
+static inline int
+cannot_hide(const pm_comp_scratch *sc, const cpoly *P, int a, int b, const double *plsx, double eps)
+{
+	const cpoly *B = &sc->g[b];
+	double sx = plsx[b], t;
+
+	if (fabs(sx) <= eps || b == a || !pm_sight_meet(&sc->sg[a], &sc->sg[b]))
+		return 1;
+	/* P's sphere wholly on the side of B's plane where x' is: P cannot
+	 * cross it (span() would say the same). */
+	t = pm_ddot(B->N, P->c) - B->d;
+	return fabs(t) > P->rad && (sx > 0 ? t - P->rad >= -eps : t + P->rad <= eps);
+}
+
 static int
 may_hide(const pm_comp_scratch *sc, const cpoly *P, int a, int b, const double *plsx, pm_dvec3 xo,
          double eps, int own)
@@ -1111,13 +1125,9 @@ may_hide(const pm_comp_scratch *sc, const cpoly *P, int a, int b, const double *
 	const cpoly *B = &sc->g[b];
 	double sx = plsx[b], lo, hi, t, u;
 
-	if (fabs(sx) <= eps || b == a || !pm_sight_meet(&sc->sg[a], &sc->sg[b]))
+	if (cannot_hide(sc, P, a, b, plsx, eps))
 		return 0;
-	/* P's sphere wholly on the side of B's plane where x' is: P cannot
-	 * cross it (span() would say the same). */
 	t = pm_ddot(B->N, P->c) - B->d;
-	if (fabs(t) > P->rad && (sx > 0 ? t - P->rad >= -eps : t + P->rad <= eps))
-		return 0;
 	/* x sees its own solid's nearly flat neighbours through it. */
 	if (B->xon && B->solid && B->obj == P->obj && own)
 		return 0;
@@ -1308,6 +1318,11 @@ pair_lists(pm_comp_scratch *sc, const unsigned char *cvx, pm_dvec3 xo, pm_dvec3 
 			nc = pm_sight_grid_query(&sc->grid, ng, &sc->sg[a], sc->cand, sc->mark, st);
 			for (int k = 0; k < nc && sc->nbl - P->r0 < stop; k++) {
 				int b = sc->cand[k], G = sc->g[b].grp;
+				/* may_hide()'s first tests before the group's, unless
+				 * the group is known to be skipped: most candidates of
+				 * a rough mesh fail them. */
+				if ((sc->gmk[G] == st && sc->gskip[G]) || cannot_hide(sc, P, a, b, plsx, eps))
+					continue;
 				if (sc->gmk[G] != st) {
 					sc->gmk[G] = st;
 					sc->gskip[G] = skip_group(sc, cvx, P, G, sgrp, xo, eps);
