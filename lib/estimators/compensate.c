@@ -1100,34 +1100,32 @@ skip_group(const pm_comp_scratch *sc, const unsigned char *cvx, const cpoly *P, 
 	return Gr->np > 1 && group_not_between(sc, P, Gr, xo, eps);
 }
 
-/* 1 if polygon b (B) may hide part of polygon a (P) from x': some ray
- * from x' meets both (sight.h), B's plane between x' and part of P, and B
- * within P's pyramid from x' (between()). plsx holds each plane's
- * N . x' - d; own says x lies on P's solid. */
+/* may_hide()'s first tests, the cheap ones: 1 if B cannot hide any of P
+ * (x' on B's plane, their sight boxes apart, or P's sphere wholly on x''s
+ * side of B's plane); else 0, with *t = N_B . (P's centre) - d_B. */
 static inline int
-cannot_hide(const pm_comp_scratch *sc, const cpoly *P, int a, int b, const double *plsx, double eps)
+cannot_hide(const pm_comp_scratch *sc, const cpoly *P, int a, int b, const double *plsx, double eps,
+            double *t)
 {
 	const cpoly *B = &sc->g[b];
-	double sx = plsx[b], t;
+	double sx = plsx[b];
 
 	if (fabs(sx) <= eps || b == a || !pm_sight_meet(&sc->sg[a], &sc->sg[b]))
 		return 1;
 	/* P's sphere wholly on the side of B's plane where x' is: P cannot
 	 * cross it (span() would say the same). */
-	t = pm_ddot(B->N, P->c) - B->d;
-	return fabs(t) > P->rad && (sx > 0 ? t - P->rad >= -eps : t + P->rad <= eps);
+	*t = pm_ddot(B->N, P->c) - B->d;
+	return fabs(*t) > P->rad && (sx > 0 ? *t - P->rad >= -eps : *t + P->rad <= eps);
 }
 
+/* may_hide() past cannot_hide(), t being what that gave. */
 static int
-may_hide(const pm_comp_scratch *sc, const cpoly *P, int a, int b, const double *plsx, pm_dvec3 xo,
-         double eps, int own)
+may_hide_rest(const pm_comp_scratch *sc, const cpoly *P, int b, const double *plsx, pm_dvec3 xo,
+              double eps, int own, double t)
 {
 	const cpoly *B = &sc->g[b];
-	double sx = plsx[b], lo, hi, t, u;
+	double sx = plsx[b], lo, hi, u;
 
-	if (cannot_hide(sc, P, a, b, plsx, eps))
-		return 0;
-	t = pm_ddot(B->N, P->c) - B->d;
 	/* x sees its own solid's nearly flat neighbours through it. */
 	if (B->xon && B->solid && B->obj == P->obj && own)
 		return 0;
@@ -1137,6 +1135,19 @@ may_hide(const pm_comp_scratch *sc, const cpoly *P, int a, int b, const double *
 		span_verts(sc, P, B->N, B->d, &lo, &hi);
 	u = pm_ddot(P->N, B->c) - P->d;
 	return (sx > 0 ? lo < -eps : hi > eps) && between(sc, P, B, xo, eps, u);
+}
+
+/* 1 if polygon b (B) may hide part of polygon a (P) from x': some ray
+ * from x' meets both (sight.h), B's plane between x' and part of P, and B
+ * within P's pyramid from x' (between()). plsx holds each plane's
+ * N . x' - d; own says x lies on P's solid. */
+static int
+may_hide(const pm_comp_scratch *sc, const cpoly *P, int a, int b, const double *plsx, pm_dvec3 xo,
+         double eps, int own)
+{
+	double t;
+
+	return !cannot_hide(sc, P, a, b, plsx, eps, &t) && may_hide_rest(sc, P, b, plsx, xo, eps, own, t);
 }
 
 typedef struct cast_ctx {
@@ -1318,16 +1329,17 @@ pair_lists(pm_comp_scratch *sc, const unsigned char *cvx, pm_dvec3 xo, pm_dvec3 
 			nc = pm_sight_grid_query(&sc->grid, ng, &sc->sg[a], sc->cand, sc->mark, st);
 			for (int k = 0; k < nc && sc->nbl - P->r0 < stop; k++) {
 				int b = sc->cand[k], G = sc->g[b].grp;
+				double t;
 				/* may_hide()'s first tests before the group's, unless
 				 * the group is known to be skipped: most candidates of
 				 * a rough mesh fail them. */
-				if ((sc->gmk[G] == st && sc->gskip[G]) || cannot_hide(sc, P, a, b, plsx, eps))
+				if ((sc->gmk[G] == st && sc->gskip[G]) || cannot_hide(sc, P, a, b, plsx, eps, &t))
 					continue;
 				if (sc->gmk[G] != st) {
 					sc->gmk[G] = st;
 					sc->gskip[G] = skip_group(sc, cvx, P, G, sgrp, xo, eps);
 				}
-				if (!sc->gskip[G] && may_hide(sc, P, a, b, plsx, xo, eps, own))
+				if (!sc->gskip[G] && may_hide_rest(sc, P, b, plsx, xo, eps, own, t))
 					push(sc, b);
 			}
 		}
