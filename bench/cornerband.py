@@ -4,7 +4,7 @@ room's walls, against a reference, window by window (issue 21's dark strip:
 a strip some 35 pixels long under the wall-ceiling corner, which averages
 over a whole wall hide).
 
-    cornerband.py [-s SEGMENTS] SCENE.pms REF.exr IMG.exr [IMG.exr ...]
+    cornerband.py [-s SEGMENTS] [-l LAYER] SCENE.pms REF.exr IMG.exr [IMG.exr ...]
 
 SCENE's walls are its vertical `quad` lines whose top edge lies in the plane
 of a horizontal `quad` (the ceiling). Each wall's top is cut into SEGMENTS
@@ -12,9 +12,11 @@ pieces along its length, and each piece into bands 3-30 mm, 30-100 mm and
 100-250 mm below the top. The points of a piece and band are projected with
 SCENE's camera (formats/scene.md: eye, look, up, vertical fov, size), and
 the pixels they fall on make its window. Prints one line per window with
-more than 8 pixels: wall, band, piece, pixels, and sum(IMG) / sum(REF) over
-the window for each IMG (the pixels' mean of R, G, B). Pass the odd and the
-even half of a series as two IMGs: a bias shows in both, noise does not.
+more than 8 pixels: wall, band, piece, pixels, REF's mean there, and
+sum(IMG) / sum(REF) over the window for each IMG (the pixels' mean of R, G,
+B, or of LAYER's: -l indirect compares the photon estimate alone, with the
+path tracer's light after its first bounce). Pass the odd and the even half
+of a series as two IMGs: a bias shows in both, noise does not.
 
 Pixels are read through tests/tools/exrstat --dump (EXRSTAT, default
 build/tests/tools/exrstat: `make build/tests/tools/exrstat`)."""
@@ -95,9 +97,10 @@ def walls(quads):
     return out
 
 
-def load(path, exrstat, w, h):
+def load(path, exrstat, w, h, layer):
+    cmd = [exrstat, "--dump"] + (["--layer", layer] if layer else []) + [path]
     try:
-        res = subprocess.run([exrstat, "--dump", path], capture_output=True, text=True)
+        res = subprocess.run(cmd, capture_output=True, text=True)
     except OSError as e:
         die("%s: %s" % (exrstat, e.strerror))
     if res.returncode != 0:
@@ -113,20 +116,25 @@ def load(path, exrstat, w, h):
 
 
 def main(argv):
-    seg = 10
-    if len(argv) > 1 and argv[1] == "-s":
-        if len(argv) < 3 or not argv[2].isdigit() or int(argv[2]) < 1:
-            die("-s needs a positive number of pieces")
-        seg = int(argv[2])
+    seg, layer = 10, None
+    while len(argv) > 1 and argv[1] in ("-s", "-l"):
+        if len(argv) < 3:
+            die("%s needs a value" % argv[1])
+        if argv[1] == "-s":
+            if not argv[2].isdigit() or int(argv[2]) < 1:
+                die("-s needs a positive number of pieces")
+            seg = int(argv[2])
+        else:
+            layer = argv[2]
         argv = argv[:1] + argv[3:]
     if len(argv) < 4:
-        sys.stderr.write("usage: cornerband.py [-s SEGMENTS] SCENE.pms REF.exr IMG.exr [IMG.exr ...]\n")
+        sys.stderr.write("usage: cornerband.py [-s SEGMENTS] [-l LAYER] SCENE.pms REF.exr IMG.exr [IMG.exr ...]\n")
         return 2
     cam, quads = read_scene(argv[1])
     w, h = cam["size"]
     exrstat = os.environ.get("EXRSTAT", "build/tests/tools/exrstat")
-    ref = load(argv[2], exrstat, w, h)
-    imgs = [load(p, exrstat, w, h) for p in argv[3:]]
+    ref = load(argv[2], exrstat, w, h, layer)
+    imgs = [load(p, exrstat, w, h, layer) for p in argv[3:]]
     f = unit(sub(cam["look"], cam["eye"]))
     r = unit(cross(f, cam["up"]))
     u = cross(r, f)
@@ -162,7 +170,8 @@ def main(argv):
                 if not sr > 0:
                     continue
                 ratios = " ".join("%.3f" % (sum(img[k] for k in win) / sr) for img in imgs)
-                print("%s\t%.3f-%.3f m\t%d\t%d px\t%s" % (name, lo, hi, s, len(win), ratios))
+                print("%s\t%.3f-%.3f m\t%d\t%d px\t%.4g\t%s" % (name, lo, hi, s, len(win), sr / len(win),
+                                                             ratios))
     return 0
 
 
