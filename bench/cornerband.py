@@ -7,7 +7,7 @@ over a whole wall hide).
     cornerband.py [-s SEGMENTS] [-l LAYER] SCENE.pms REF.exr IMG.exr [IMG.exr ...]
 
 SCENE's walls are its vertical `quad` lines whose top edge lies in the plane
-of a horizontal `quad` (the ceiling). Each wall's top is cut into SEGMENTS
+of a horizontal `quad` (the ceiling), named by their line. Each wall's top is cut into SEGMENTS
 pieces along its length, and each piece into bands 3-30 mm, 30-100 mm and
 100-250 mm below the top. The points of a piece and band are projected with
 SCENE's camera (formats/scene.md: eye, look, up, vertical fov, size), and
@@ -68,7 +68,7 @@ def read_scene(path):
                 cam["size"] = (int(kv["size"][0]), int(kv["size"][1]))
             elif w[0] == "quad" and len(w) >= 14:
                 v = [float(x) for x in w[2:14]]
-                quads.append([tuple(v[3 * i:3 * i + 3]) for i in range(4)])
+                quads.append((no, [tuple(v[3 * i:3 * i + 3]) for i in range(4)]))
         except (KeyError, ValueError, IndexError):
             die("%s:%d: cannot read this line" % (path, no))
     if cam is None:
@@ -76,14 +76,23 @@ def read_scene(path):
     return cam, quads
 
 
+def horizontal(q):
+    return all(abs(p[1] - q[0][1]) < 1e-6 for p in q)
+
+
+def vertical(q):
+    n = cross(sub(q[1], q[0]), sub(q[3], q[0]))
+    return abs(n[1]) <= 1e-6 * math.sqrt(dot(n, n))
+
+
 def walls(quads):
-    """(name, corner at the top, direction along the top, length, down) per
-    vertical quad whose top edge lies on a horizontal quad's plane."""
-    flat = {round(q[0][1], 6) for q in quads if all(abs(p[1] - q[0][1]) < 1e-6 for p in q)}
+    """(name, corner at the top, unit direction along the top, length) per
+    vertical quad whose top edge lies in a horizontal quad's plane."""
+    flat = {round(q[0][1], 6) for _, q in quads if horizontal(q)}
     out = []
-    for k, q in enumerate(quads):
+    for no, q in quads:
         top = max(p[1] for p in q)
-        if all(abs(p[1] - q[0][1]) < 1e-6 for p in q) or round(top, 6) not in flat:
+        if not vertical(q) or round(top, 6) not in flat:
             continue
         up = [p for p in q if abs(p[1] - top) < 1e-6]
         if len(up) != 2:
@@ -93,7 +102,7 @@ def walls(quads):
         length = math.sqrt(dot(d, d))
         if length <= 0:
             continue
-        out.append(("quad %d" % (k + 1), a, unit(d), length))
+        out.append(("line %d" % no, a, unit(d), length))
     return out
 
 
