@@ -15,8 +15,11 @@ the pixels they fall on make its window. Prints one line per window with
 more than 8 pixels: wall, band, piece, pixels, REF's mean there, and
 sum(IMG) / sum(REF) over the window for each IMG (the pixels' mean of R, G,
 B, or of LAYER's: -l indirect compares the photon estimate alone, with the
-path tracer's light after its first bounce). Pass the odd and the even half
-of a series as two IMGs: a bias shows in both, noise does not.
+path tracer's light after its first bounce; where a wall sees a light, that
+layer also holds the share of direct light the path tracer's BSDF samples
+find, which a photon pass files as direct, so compare totals there). Pass
+the odd and the even half of a series as two IMGs: a bias shows in both,
+noise does not.
 
 Pixels are read through tests/tools/exrstat --dump (EXRSTAT, default
 build/tests/tools/exrstat: `make build/tests/tools/exrstat`)."""

@@ -7,7 +7,8 @@ Usage: bench/families.py OUTDIR [--size W H] [--seed S] [FAMILY ...]
   (default all) and prints one line per family: name, polygons, what it is.
 
 Families (each in a room of 4 x 2.6 x 5 m lit by an area light 1 mm under
-the ceiling; seeded, so the same seed writes the same bytes):
+the ceiling, facing down, but cove's; seeded, so the same seed writes the
+same bytes):
   prims    Blender-primitive-like curved meshes on a floor and a shelf: a UV
            sphere 48 x 24, a torus 48 x 16, an open 48-sided tube, a
            subdivided blobby head (an icosphere of 5120 triangles, displaced)
@@ -21,6 +22,10 @@ the ceiling; seeded, so the same seed writes the same bytes):
            eight step blocks with coincident faces, a bookshelf of 2 cm
            panels with books touching or 1 mm apart, a slatted chair on a
            5 mm rug
+  cove     thin's room and parts lit by a cove light: the lamp turned to
+           face the ceiling, 15 cm under it and 10-30 cm from the back
+           wall, so that the room's light comes off a strip of ceiling by
+           that wall and rises toward the wall-ceiling corner
 A family is one function below; add one by writing another and listing it in
 FAMILIES."""
 import math
@@ -38,8 +43,9 @@ def fmt(v):
 
 
 class Scene:
-    def __init__(self, d, name, size, rng):
-        self.d, self.name, self.size, self.rng = d, name, size, rng
+    def __init__(self, d, name, size, seed):
+        self.d, self.name, self.size, self.seed = d, name, size, seed
+        self.rng = random.Random("%s-%d" % (name, seed))
         self.lines, self.mats, self.npoly, self.nmesh = [], [], 0, 0
 
     def mat(self, name, spec):
@@ -96,10 +102,14 @@ class Scene:
         self.quad("wall", [(x0, y0, z0), (x0, y1, z0), (x0, y1, z1), (x0, y0, z1)])
         self.quad("wall", [(x1, y0, z0), (x1, y0, z1), (x1, y1, z1), (x1, y1, z0)])
 
-    def write(self, eye, look, fov=55):
+    def write(self, eye, look, fov=55, lamp=None):
+        """lamp: the light's quad, in the order that makes it face the way
+        it emits; by default 0.9 x 0.7 m at the ceiling's centre, facing
+        down."""
         w, h = self.size
         hx, hz = 0.45, 0.35
         cx, cz, y = W / 2, D / 2, H - 0.001
+        lamp = lamp or [(cx - hx, y, cz - hz), (cx + hx, y, cz - hz), (cx + hx, y, cz + hz), (cx - hx, y, cz + hz)]
         with open(os.path.join(self.d, self.name + ".pms"), "w") as f:
             f.write("# %s (bench/families.py)\n" % self.name)
             f.write("camera eye %s  look %s  up 0 1 0  fov %s  size %d %d\n" % (
@@ -109,8 +119,7 @@ class Scene:
             f.write("material lamp diffuse albedo 0.5 0.5 0.5 emit 12 11.5 10.5\n")
             for m in self.mats:
                 f.write(m + "\n")
-            f.write("quad lamp  %s\n" % "  ".join(" ".join(map(fmt, v)) for v in [
-                (cx - hx, y, cz - hz), (cx + hx, y, cz - hz), (cx + hx, y, cz + hz), (cx - hx, y, cz + hz)]))
+            f.write("quad lamp  %s\n" % "  ".join(" ".join(map(fmt, v)) for v in lamp))
             for line in self.lines:
                 f.write(line + "\n")
         return self.npoly + 1
@@ -307,7 +316,7 @@ def fam_soup(s):
     return fam_prims(s, soup=True)
 
 
-def fam_thin(s):
+def fam_thin(s, lamp=None):
     r = s.rng
     s.mat("wood", "diffuse albedo 0.55 0.4 0.25")
     s.mat("paint", "diffuse albedo 0.7 0.7 0.68")
@@ -345,10 +354,20 @@ def fam_thin(s):
         s.box("wood", (cx - 0.2, y, cz + 0.17), (cx + 0.2, y + 0.06, cz + 0.19))
     s.box("wood", (cx - 0.2, y0 + 0.47, cz + 0.17), (cx - 0.17, y0 + 0.95, cz + 0.2))
     s.box("wood", (cx + 0.17, y0 + 0.47, cz + 0.17), (cx + 0.2, y0 + 0.95, cz + 0.2))
-    return s.write((3.75, 1.9, 4.9), (1.0, 0.9, 1.6), 72)
+    return s.write((3.75, 1.9, 4.9), (1.0, 0.9, 1.6), 72, lamp)
 
 
-FAMILIES = {"prims": fam_prims, "dense": fam_dense, "scanned": fam_scanned, "soup": fam_soup, "thin": fam_thin}
+def fam_cove(s):
+    # The lamp's corners in the order that turns it to face up (the default
+    # lamp's, mirrored), by the back wall; the parts are thin's, drawn from
+    # thin's seed so that only the light differs.
+    y = H - 0.15
+    s.rng = random.Random("thin-%d" % s.seed)
+    return fam_thin(s, [(1.55, y, 0.3), (2.45, y, 0.3), (2.45, y, 0.1), (1.55, y, 0.1)])
+
+
+FAMILIES = {"prims": fam_prims, "dense": fam_dense, "scanned": fam_scanned, "soup": fam_soup, "thin": fam_thin,
+            "cove": fam_cove}
 
 
 def main(argv):
@@ -375,7 +394,7 @@ def main(argv):
     for n in names or list(FAMILIES):
         d = os.path.join(out, n)
         os.makedirs(d, exist_ok=True)
-        s = Scene(d, n, size, random.Random("%s-%d" % (n, seed)))
+        s = Scene(d, n, size, seed)
         np = FAMILIES[n](s)
         print("%s\t%d polygons\t%s" % (n, np, os.path.join(d, n + ".pms")))
 

@@ -11,7 +11,7 @@
 # build; needs bin/ and bench/errsplit: make bench-progs). Environment,
 # defaults by mode (quick | mid | full):
 #   SCENES   cornell room caustic and bench/families.py's families
-#            (prims dense scanned soup thin); add a family there and here
+#            (prims dense scanned soup thin cove); add a family there and here
 #   SIZE     image width: 96 | 256 | 256 (height by the scene's aspect)
 #   PHOTONS  photons per pass: 200000
 #   RUNS     view-pass timings per estimator, median taken: 3 | 3 | 5
@@ -44,7 +44,7 @@ mid) d_size=256 d_runs=3 d_n=8 d_rp=8 d_rs=256 d_budget=300 ;;
 full) d_size=256 d_runs=5 d_n=32 d_rp=32 d_rs=1024 d_budget=1200 ;;
 *) echo "usage: bench/families.sh [quick|mid|full] [BUILD_DIR]" >&2; exit 2 ;;
 esac
-SCENES=${SCENES:-cornell room caustic prims dense scanned soup thin}
+SCENES=${SCENES:-cornell room caustic prims dense scanned soup thin cove}
 SIZE=${SIZE:-$d_size} PHOTONS=${PHOTONS:-200000} RUNS=${RUNS:-$d_runs} N=${N:-$d_n} J=${J:-2} GATHER=${GATHER:-32}
 REF_PASSES=${REF_PASSES:-$d_rp} REF_SPP=${REF_SPP:-$d_rs} BUDGET=${BUDGET:-$d_budget}
 . "$top/bench/passes.sh"
