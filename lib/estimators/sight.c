@@ -126,11 +126,48 @@ pm_sight_grid_build(pm_sight_grid *g, const pm_sight *s, int n)
 	return 1;
 }
 
-int
-pm_sight_grid_query(const pm_sight_grid *g, int n, const pm_sight *q, int *out, int *mark, int stamp)
+/* pm_sight_grid_query leaving out group skip. A left-out polygon is marked
+ * too, so that its other cells cost what a duplicate does. Apart from the
+ * plain query: the test, were it there, would cost the plain queries
+ * (scanned) more than leaving a small sheet out saves. */
+static int
+query_but(const pm_sight_grid *g, int n, const pm_sight *q, const int *grp, int skip,
+          int *out, int *mark, int stamp)
 {
 	int c0[2], c1[2], k = 0;
 
+	for (int i = 0; i < (q->face < 0 ? n : g->nwide); i++) {
+		int p = q->face < 0 ? i : g->wide[i];
+		mark[p] = stamp;
+		if (grp[p] != skip)
+			out[k++] = p;
+	}
+	if (q->face < 0)
+		return k;
+	cells(q, c0, c1);
+	for (int i = c0[0]; i <= c1[0]; i++)
+		for (int j = c0[1]; j <= c1[1]; j++) {
+			int cell = (q->face * C + i) * C + j;
+			for (int t = g->start[cell]; t < g->start[cell + 1]; t++) {
+				int p = g->item[t];
+				if (mark[p] != stamp) {
+					mark[p] = stamp;
+					if (grp[p] != skip)
+						out[k++] = p;
+				}
+			}
+		}
+	return k;
+}
+
+int
+pm_sight_grid_query(const pm_sight_grid *g, int n, const pm_sight *q, const int *grp, int skip,
+                    int *out, int *mark, int stamp)
+{
+	int c0[2], c1[2], k = 0;
+
+	if (grp && skip >= 0)
+		return query_but(g, n, q, grp, skip, out, mark, stamp);
 	if (q->face < 0) {
 		for (int p = 0; p < n; p++) {
 			mark[p] = stamp;

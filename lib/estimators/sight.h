@@ -56,9 +56,13 @@ int pm_sight_grid_build(pm_sight_grid *g, const pm_sight *s, int n);
 
 /* Writes to out the polygons whose boxes may meet q (a superset: test
  * each with pm_sight_meet), each once: mark[] holds stamp for those
- * written (mark has room for n, its other values below stamp). out has
- * room for n. Returns how many. With q->face -1, every polygon. */
-int pm_sight_grid_query(const pm_sight_grid *g, int n, const pm_sight *q, int *out, int *mark, int stamp);
+ * written, and maybe for others (mark has room for n, its other values
+ * below stamp). out has room for n. Returns how many. With q->face -1,
+ * every polygon. With grp (each polygon's group) and skip >= 0, the
+ * polygons of group skip are left out (the asking polygon's own sheet,
+ * which hides none of it: on a dense mesh most of what a query finds). */
+int pm_sight_grid_query(const pm_sight_grid *g, int n, const pm_sight *q, const int *grp, int skip,
+                        int *out, int *mark, int stamp);
 
 void pm_sight_grid_free(pm_sight_grid *g);
 

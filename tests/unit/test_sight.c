@@ -124,7 +124,7 @@ TEST(grid_finds_every_box_that_meets)
 		for (int p = 0; p < N; p++)
 			mark[p] = 0;
 		for (int q = 0; q < N; q++) {
-			int k = pm_sight_grid_query(&g, N, &s[q], out, mark, ++stamp), found = 0;
+			int k = pm_sight_grid_query(&g, N, &s[q], NULL, 0, out, mark, ++stamp), found = 0;
 			total += round < 2 ? k : 0;
 			for (int i = 0; i < k; i++) {
 				extra += mark[out[i]] != stamp;
@@ -143,11 +143,57 @@ TEST(grid_finds_every_box_that_meets)
 	CHECKF(total < 2 * N * N / 4, "%d candidates for %d queries: the grid culls little", total, 2 * N);
 }
 
+/* A query told to leave out one group returns what the plain query does
+ * but that group's polygons, for boxes on faces, wide ones and an asking
+ * box of face -1 alike. */
+TEST(grid_query_leaves_out_one_group)
+{
+	enum { N = 400, NG = 5 };
+	static pm_sight s[N];
+	static int out[N], out2[N], mark[N], mark2[N], grp[N];
+	pm_sight_grid g = {0};
+	pm_dvec3 eye = pm_dv3(0, 0, 0), v[4];
+	int wrong = 0, left = 0, faceless = 0, stamp = 0;
+
+	for (int p = 0; p < N; p++) {
+		pm_dvec3 c = pm_dv3(6 * uni() - 3, 6 * uni() - 3, 6 * uni() - 3);
+		int n = poly(c, p % 7 == 0 ? 3 * uni() : 0.4 * uni(), v);
+		pm_sight_box(v, n, eye, 1e-4, &s[p]);
+		grp[p] = p % NG;
+		faceless += s[p].face < 0;
+	}
+	CHECK(pm_sight_grid_build(&g, s, N));
+	for (int p = 0; p < N; p++)
+		mark[p] = mark2[p] = 0;
+	for (int q = 0; q < N; q++) {
+		int skip = q % NG, st = ++stamp;
+		int k = pm_sight_grid_query(&g, N, &s[q], NULL, skip, out, mark, st);
+		int k2 = pm_sight_grid_query(&g, N, &s[q], grp, skip, out2, mark2, st);
+		int j = 0;
+		/* The same order, the skipped group's polygons taken out. */
+		for (int i = 0; i < k; i++) {
+			if (grp[out[i]] == skip) {
+				left++;
+				continue;
+			}
+			wrong += j >= k2 || out2[j] != out[i];
+			j++;
+		}
+		wrong += j != k2;
+		for (int i = 0; i < k2; i++)
+			wrong += mark2[out2[i]] != st || grp[out2[i]] == skip;
+	}
+	pm_sight_grid_free(&g);
+	CHECKF(wrong == 0, "%d differences from the plain query", wrong);
+	CHECKF(left > 0 && faceless > 0, "%d left out, %d boxes of face -1: nothing tested", left, faceless);
+}
+
 int
 main(void)
 {
 	RUN(box_holds_the_polygon_and_its_neighbourhood);
 	RUN(box_refuses_what_it_cannot_hold);
 	RUN(grid_finds_every_box_that_meets);
+	RUN(grid_query_leaves_out_one_group);
 	return check_done();
 }
