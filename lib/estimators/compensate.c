@@ -1335,7 +1335,7 @@ pair_lists(pm_comp_scratch *sc, const unsigned char *cvx, pm_dvec3 xo, pm_dvec3 
 			built = 1;
 			/* Not P's own sheet, which skip_group() passes over, where
 			 * it is an eighth of the cube or more (dense: two thirds of
-			 * what the grid gives); a smaller one costs the query more
+			 * the candidates walked); a smaller one costs the query more
 			 * to leave out than the walk to pass over (scanned). */
 			int skip = sgrp >= 0 && 8 * sc->gr[sgrp].np >= ng ? sgrp : -1;
 			nc = pm_sight_grid_query(&sc->grid, ng, &sc->sg[a], sc->pgrp, skip, sc->cand, sc->mark, st);
