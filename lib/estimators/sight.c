@@ -126,38 +126,21 @@ pm_sight_grid_build(pm_sight_grid *g, const pm_sight *s, int n)
 	return 1;
 }
 
-/* pm_sight_grid_query leaving out group skip. A left-out polygon is marked
- * too, so that its other cells cost what a duplicate does. Apart from the
- * plain query: the test, were it there, would cost the plain queries
- * (scanned) more than leaving a small sheet out saves. */
+/* out[0..k-1] without group skip's polygons, in order (none left out
+ * without grp or with skip < 0): one pass over what the query found, kept
+ * out of its walk over the cells, where a test per item cost the plain
+ * queries more than it saved (scanned +0.5 %). Returns how many stay. */
 static int
-query_but(const pm_sight_grid *g, int n, const pm_sight *q, const int *grp, int skip,
-          int *out, int *mark, int stamp)
+leave_out(const int *grp, int skip, int *out, int k)
 {
-	int c0[2], c1[2], k = 0;
+	int m = 0;
 
-	for (int i = 0; i < (q->face < 0 ? n : g->nwide); i++) {
-		int p = q->face < 0 ? i : g->wide[i];
-		mark[p] = stamp;
-		if (grp[p] != skip)
-			out[k++] = p;
-	}
-	if (q->face < 0)
+	if (!grp || skip < 0)
 		return k;
-	cells(q, c0, c1);
-	for (int i = c0[0]; i <= c1[0]; i++)
-		for (int j = c0[1]; j <= c1[1]; j++) {
-			int cell = (q->face * C + i) * C + j;
-			for (int t = g->start[cell]; t < g->start[cell + 1]; t++) {
-				int p = g->item[t];
-				if (mark[p] != stamp) {
-					mark[p] = stamp;
-					if (grp[p] != skip)
-						out[k++] = p;
-				}
-			}
-		}
-	return k;
+	for (int i = 0; i < k; i++)
+		if (grp[out[i]] != skip)
+			out[m++] = out[i];
+	return m;
 }
 
 int
@@ -166,14 +149,12 @@ pm_sight_grid_query(const pm_sight_grid *g, int n, const pm_sight *q, const int 
 {
 	int c0[2], c1[2], k = 0;
 
-	if (grp && skip >= 0)
-		return query_but(g, n, q, grp, skip, out, mark, stamp);
 	if (q->face < 0) {
 		for (int p = 0; p < n; p++) {
 			mark[p] = stamp;
 			out[k++] = p;
 		}
-		return k;
+		return leave_out(grp, skip, out, k);
 	}
 	for (int i = 0; i < g->nwide; i++) {
 		mark[g->wide[i]] = stamp;
@@ -191,7 +172,7 @@ pm_sight_grid_query(const pm_sight_grid *g, int n, const pm_sight *q, const int 
 				}
 			}
 		}
-	return k;
+	return leave_out(grp, skip, out, k);
 }
 
 void
