@@ -1277,10 +1277,6 @@ pair_lists(pm_comp_scratch *sc, const unsigned char *cvx, pm_dvec3 xo, pm_dvec3 
 			return 0;
 		for (int G = 0; G < ngr; G++)
 			sc->gmk[G] = 0;
-		if (!pm_grow((void **)&sc->pgrp, &sc->pgrpcap, 0, ng, sizeof *sc->pgrp))
-			return 0;
-		for (int b = 0; b < ng; b++)
-			sc->pgrp[b] = sc->g[b].grp;
 	}
 	int built = 0;
 	int xobj[4], nxobj = 0, mixed = 0;
@@ -1330,8 +1326,14 @@ pair_lists(pm_comp_scratch *sc, const unsigned char *cvx, pm_dvec3 xo, pm_dvec3 
 			}
 		} else if (!few_hiders(sc, cvx, P, a, sgrp, plsx, xo, eps, own, ++sc->stamp)) {
 			int st = sc->stamp;
-			if (!built && !pm_sight_grid_build(&sc->grid, sc->sg, ng))
-				return 0;
+			if (!built) {
+				/* The grid, and the groups its queries leave out by. */
+				if (!pm_sight_grid_build(&sc->grid, sc->sg, ng) ||
+				    !pm_grow((void **)&sc->pgrp, &sc->pgrpcap, 0, ng, sizeof *sc->pgrp))
+					return 0;
+				for (int b = 0; b < ng; b++)
+					sc->pgrp[b] = sc->g[b].grp;
+			}
 			built = 1;
 			/* Not P's own sheet, which skip_group() passes over, where
 			 * it is an eighth of the cube or more (dense: two thirds of
