@@ -190,3 +190,86 @@ pm_clip_area(const pm_dvec3 *v, size_t n, pm_dvec3 normal, double h)
 		pm_clip_vertex(&c, v[i]);
 	return pm_clip_end(&c, normal);
 }
+
+/* One stage of pm_clip_array: put()'s rules for stage j over a whole
+ * polygon, the closing edge last, as close_stage() takes it. -1 past cap. */
+static int
+stage(const pm_clipper *c, int j, const pm_dvec3 *in, int n, pm_dvec3 *out, int cap)
+{
+	int m = 0, first_in = 0, prev_in = 0;
+
+	for (int i = 0; i < n; i++) {
+		int in_i = inside(c, j, in[i]);
+		if (i == 0)
+			first_in = in_i;
+		else if (in_i != prev_in) {
+			if (m >= cap)
+				return -1;
+			out[m++] = in_i ? crossing(c, j, in[i], in[i - 1]) : crossing(c, j, in[i - 1], in[i]);
+		}
+		if (in_i) {
+			if (m >= cap)
+				return -1;
+			out[m++] = in[i];
+		}
+		prev_in = in_i;
+	}
+	if (n > 0 && prev_in != first_in) {
+		if (m >= cap)
+			return -1;
+		out[m++] = prev_in ? crossing(c, j, in[n - 1], in[0]) : crossing(c, j, in[0], in[n - 1]);
+	}
+	return m;
+}
+
+#define ARRAY_MAX 64
+
+int
+pm_clip_array(const pm_dvec3 *v, int n, double h, const double *lo, const double *hi,
+              pm_dvec3 normal, pm_dvec3 *out, int cap, double *area, pm_dvec3 *middle)
+{
+	pm_clipper c;
+	pm_dvec3 buf[2][ARRAY_MAX];
+	const pm_dvec3 *src = v;
+	int m = n, b = 0, last = -1;
+
+	*area = 0;
+	*middle = pm_dv3(0, 0, 0);
+	pm_clip_begin(&c, h);
+	if (c.off)
+		return 0;
+	if (lo && hi)
+		pm_clip_bounds(&c, lo, hi);
+	/* The stages that cut, in pipeline order; the last writes to out. */
+	for (int j = c.first; j < 6; j = c.next[j])
+		last = j;
+	for (int j = c.first; j < 6 && m > 0; j = c.next[j]) {
+		pm_dvec3 *dst = j == last ? out : buf[b];
+		m = stage(&c, j, src, m, dst, j == last ? cap : ARRAY_MAX);
+		if (m < 0)
+			return -1;
+		src = dst;
+		b ^= 1;
+	}
+	if (src != out) {
+		if (m > cap)
+			return -1;
+		for (int i = 0; i < m; i++)
+			out[i] = src[i];
+	}
+	/* emit()'s sums, in its order. */
+	pm_dvec3 sum = pm_dv3(0, 0, 0), vsum = pm_dv3(0, 0, 0);
+	for (int i = 0; i < m; i++) {
+		if (i > 0)
+			sum = pm_dadd(sum, pm_dcross(pm_dsub(out[i - 1], out[0]), pm_dsub(out[i], out[0])));
+		vsum = pm_dadd(vsum, out[i]);
+	}
+	if (m > 0)
+		*middle = pm_dscale(vsum, 1.0 / m);
+	if (m >= 3) {
+		double a = normal.x == 0 && normal.y == 0 && normal.z == 0 ? 0.5 * pm_dlen(sum)
+		                                                           : 0.5 * fabs(pm_ddot(sum, normal));
+		*area = isfinite(a) ? a : 0;
+	}
+	return m;
+}

@@ -342,6 +342,9 @@ typedef struct visit_ctx {
 	int open;
 } visit_ctx;
 
+/* Polygons of up to this many vertices are clipped from an array. */
+#define VISIT_MAX 16
+
 static void
 visit(void *vctx, uint32_t g)
 {
@@ -353,7 +356,7 @@ visit(void *vctx, uint32_t g)
 	uint32_t n = s->poly_start[g + 1] - s->poly_start[g];
 	int cap = 2 * (int)n + 12, kept;
 	pm_clipper cl;
-	pm_dvec3 N;
+	pm_dvec3 N, mid;
 	double A, len;
 	cpoly *P;
 
@@ -365,13 +368,17 @@ visit(void *vctx, uint32_t g)
 		sc->oom = 1;
 		return;
 	}
-	for (uint32_t v = s->poly_start[g]; v < s->poly_start[g + 1]; v++) {
+	pm_dvec3 rv[VISIT_MAX];
+	for (uint32_t v = s->poly_start[g], i = 0; v < s->poly_start[g + 1]; v++, i++) {
 		pm_dvec3 r = pm_dsub(pm_dfromf(verts[s->poly_vert[v]]), q->x);
-		double rc[3] = {r.x, r.y, r.z};
-		for (int a = 0; a < 3; a++) {
-			lo[a] = rc[a] < lo[a] ? rc[a] : lo[a];
-			hi[a] = rc[a] > hi[a] ? rc[a] : hi[a];
-		}
+		if (i < VISIT_MAX)
+			rv[i] = r;
+		lo[0] = r.x < lo[0] ? r.x : lo[0];
+		lo[1] = r.y < lo[1] ? r.y : lo[1];
+		lo[2] = r.z < lo[2] ? r.z : lo[2];
+		hi[0] = r.x > hi[0] ? r.x : hi[0];
+		hi[1] = r.y > hi[1] ? r.y : hi[1];
+		hi[2] = r.z > hi[2] ? r.z : hi[2];
 	}
 	/* Open cube: a polygon lying in (or beyond) a face plane is where the
 	 * set-aside boundary photons are; it has no area inside. */
@@ -379,18 +386,24 @@ visit(void *vctx, uint32_t g)
 		for (int a = 0; a < 3; a++)
 			if (lo[a] >= q->h - 0.5 * q->tau || hi[a] <= -q->h + 0.5 * q->tau)
 				return;
-	pm_clip_begin(&cl, q->h);
-	pm_clip_bounds(&cl, lo, hi);
-	pm_clip_keep(&cl, sc->cv + sc->ncv, cap);
-	for (uint32_t v = s->poly_start[g]; v < s->poly_start[g + 1]; v++)
-		pm_clip_vertex(&cl, pm_dsub(pm_dfromf(verts[s->poly_vert[v]]), q->x));
 	N = pm_dfromf(s->poly_normal[g]);
 	len = pm_dlen(N);
 	if (!(len > 0))
 		return;
 	N = pm_dscale(N, 1 / len);
-	A = pm_clip_end(&cl, N);
-	kept = pm_clip_kept(&cl);
+	kept = n <= VISIT_MAX ? pm_clip_array(rv, (int)n, q->h, lo, hi, N, sc->cv + sc->ncv, cap, &A, &mid) : -1;
+	if (kept < 0) {
+		/* Past the array clipper's buffers: the streaming one, which has
+		 * no limit and gives the same answer where both can. */
+		pm_clip_begin(&cl, q->h);
+		pm_clip_bounds(&cl, lo, hi);
+		pm_clip_keep(&cl, sc->cv + sc->ncv, cap);
+		for (uint32_t v = s->poly_start[g]; v < s->poly_start[g + 1]; v++)
+			pm_clip_vertex(&cl, pm_dsub(pm_dfromf(verts[s->poly_vert[v]]), q->x));
+		A = pm_clip_end(&cl, N);
+		kept = pm_clip_kept(&cl);
+		mid = pm_clip_middle(&cl);
+	}
 	if (!(A > 0) || kept < 3)
 		return;
 	P = &sc->g[sc->ng++];
@@ -403,21 +416,30 @@ visit(void *vctx, uint32_t g)
 	P->v0 = sc->ncv;
 	P->nv = kept;
 	sc->ncv += kept;
-	P->d = pm_ddot(N, pm_clip_middle(&cl));
+	P->d = pm_ddot(N, mid);
 	P->ax = fabs(N.x) > fabs(N.y) ? (fabs(N.x) > fabs(N.z) ? 0 : 2) : (fabs(N.y) > fabs(N.z) ? 1 : 2);
 	P->nax = fabs(comp(N, P->ax));
+	int whole = 1, u = (P->ax + 1) % 3, w = (P->ax + 2) % 3;
 	for (int a = 0; a < 3; a++) {
+		whole &= lo[a] >= -q->h && hi[a] <= q->h;
 		P->lo[a] = INFINITY;
 		P->hi[a] = -INFINITY;
 	}
+	/* Not cut: its bounds are the polygon's own. */
+	if (whole)
+		for (int a = 0; a < 3; a++) {
+			P->lo[a] = lo[a];
+			P->hi[a] = hi[a];
+		}
 	for (int i = 0; i < kept; i++) {
 		pm_dvec3 v = sc->cv[P->v0 + i];
-		for (int a = 0; a < 3; a++) {
-			P->lo[a] = dmin(P->lo[a], comp(v, a));
-			P->hi[a] = dmax(P->hi[a], comp(v, a));
-		}
-		sc->uv[2 * (P->v0 + i)] = comp(v, (P->ax + 1) % 3);
-		sc->uv[2 * (P->v0 + i) + 1] = comp(v, (P->ax + 2) % 3);
+		if (!whole)
+			for (int a = 0; a < 3; a++) {
+				P->lo[a] = dmin(P->lo[a], comp(v, a));
+				P->hi[a] = dmax(P->hi[a], comp(v, a));
+			}
+		sc->uv[2 * (P->v0 + i)] = comp(v, u);
+		sc->uv[2 * (P->v0 + i) + 1] = comp(v, w);
 	}
 	P->c = pm_dscale(pm_dadd(pm_dv3(P->lo[0], P->lo[1], P->lo[2]), pm_dv3(P->hi[0], P->hi[1], P->hi[2])), 0.5);
 	P->rad = 0.5 * pm_dlen(pm_dv3(P->hi[0] - P->lo[0], P->hi[1] - P->lo[1], P->hi[2] - P->lo[2]));

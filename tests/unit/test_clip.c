@@ -4,6 +4,7 @@
  * degenerate input. */
 #include <math.h>
 #include <stdlib.h>
+#include <string.h>
 
 #include "check.h"
 #include "estimators/clip.h"
@@ -213,6 +214,87 @@ TEST(degenerate_inputs)
 	free(circ);
 }
 
+/* The array clipper against the streaming one, bit for bit, on random
+ * triangles, quads and star-shaped (concave) polygons around and across a
+ * cube, with and without bounds; and its -1 where out is too small. */
+static double
+urand(unsigned *st)
+{
+	*st = *st * 1664525u + 1013904223u;
+	return (*st >> 8) * (1.0 / 16777216.0);
+}
+
+static pm_dvec3
+unit(pm_dvec3 a)
+{
+	return pm_dscale(a, 1 / pm_dlen(a));
+}
+
+static int
+same_bits(double a, double b)
+{
+	return memcmp(&a, &b, sizeof a) == 0;
+}
+
+TEST(array_matches_streaming)
+{
+	unsigned st = 7;
+	int cut = 0, compared = 0;
+	for (int trial = 0; trial < 4000; trial++) {
+		int n = trial % 3 == 0 ? 3 : trial % 3 == 1 ? 4 : 5 + trial % 9;
+		double h = 0.25 + urand(&st), lo[3] = {INFINITY, INFINITY, INFINITY},
+		       hi[3] = {-INFINITY, -INFINITY, -INFINITY};
+		pm_dvec3 c = pm_dv3(urand(&st) - 0.5, urand(&st) - 0.5, urand(&st) - 0.5), v[16], out[64];
+		pm_dvec3 u = unit(pm_dv3(urand(&st) - 0.5, urand(&st) - 0.5, urand(&st) - 0.5));
+		pm_dvec3 w = unit(pm_dcross(u, pm_dv3(0.3, 0.5, 0.8)));
+		pm_dvec3 N = pm_dcross(u, w);
+		double size = 0.2 + 3 * urand(&st);
+		for (int i = 0; i < n; i++) {
+			/* Star-shaped: every other vertex pulled in past 5 vertices. */
+			double t = 2 * PM_PI * (i + 0.3 * urand(&st)) / n,
+			       r = size * (n > 4 && i % 2 ? 0.3 : 1);
+			v[i] = pm_dadd(c, pm_dadd(pm_dscale(u, r * cos(t)), pm_dscale(w, r * sin(t))));
+			lo[0] = fmin(lo[0], v[i].x), lo[1] = fmin(lo[1], v[i].y), lo[2] = fmin(lo[2], v[i].z);
+			hi[0] = fmax(hi[0], v[i].x), hi[1] = fmax(hi[1], v[i].y), hi[2] = fmax(hi[2], v[i].z);
+		}
+		for (int b = 0; b < 2; b++) {
+			pm_clipper cl;
+			pm_dvec3 keep[64], mid;
+			double a;
+			pm_clip_begin(&cl, h);
+			if (b)
+				pm_clip_bounds(&cl, lo, hi);
+			pm_clip_keep(&cl, keep, 64);
+			for (int i = 0; i < n; i++)
+				pm_clip_vertex(&cl, v[i]);
+			double want = pm_clip_end(&cl, N);
+			int m = pm_clip_array(v, n, h, b ? lo : NULL, b ? hi : NULL, N, out, 64, &a, &mid);
+			CHECKF(m == pm_clip_kept(&cl), "trial %d: %d vertices against %d", trial, m, pm_clip_kept(&cl));
+			CHECKF(same_bits(a, want), "trial %d: area %.17g against %.17g", trial, a, want);
+			pm_dvec3 wm = pm_clip_middle(&cl);
+			CHECK(same_bits(mid.x, wm.x) && same_bits(mid.y, wm.y) && same_bits(mid.z, wm.z));
+			for (int i = 0; i < m && i < 64; i++)
+				CHECK(same_bits(out[i].x, keep[i].x) && same_bits(out[i].y, keep[i].y) &&
+				      same_bits(out[i].z, keep[i].z));
+			cut += m != n;
+			compared++;
+			/* Too small an out: -1, never a write past it. */
+			if (m > 1) {
+				pm_dvec3 small[64];
+				small[m - 1] = pm_dv3(42, 42, 42);
+				CHECK(pm_clip_array(v, n, h, NULL, NULL, N, small, m - 1, &a, &mid) == -1);
+				CHECK(small[m - 1].x == 42);
+			}
+		}
+	}
+	/* The trials must have cut polygons, not only passed them through. */
+	CHECKF(cut > compared / 4, "%d of %d cut", cut, compared);
+	double a;
+	pm_dvec3 mid, out[8], sq[4] = {{-1, -1, 0}, {1, -1, 0}, {1, 1, 0}, {-1, 1, 0}};
+	CHECK(pm_clip_array(sq, 4, 0, NULL, NULL, Z, out, 8, &a, &mid) == 0 && a == 0);
+	CHECK(pm_clip_array(sq, 4, NAN, NULL, NULL, Z, out, 8, &a, &mid) == 0 && a == 0);
+}
+
 int
 main(void)
 {
@@ -224,5 +306,6 @@ main(void)
 	RUN(concave_polygons);
 	RUN(far_from_origin);
 	RUN(degenerate_inputs);
+	RUN(array_matches_streaming);
 	return check_done();
 }
