@@ -282,20 +282,34 @@ pm_polyindex_cube(const pm_polyindex *pi, pm_dvec3 c, double h,
 		q[k] = step_float((float)(cc[k] - h), -1);
 		q[3 + k] = step_float((float)(cc[k] + h), 1);
 	}
+	/* Children are tested before they are pushed, so a node on the stack
+	 * is known to meet the cube; the visiting order (left before right) is
+	 * the same as testing on popping, so callers see the same sequence. */
+	if (!overlaps(pi->node[0].lo, pi->node[0].hi, q))
+		return;
 	stack[top++] = 0;
 	while (top > 0) {
 		const pm_bvh_node *nd = &pi->node[stack[--top]];
-		if (!overlaps(nd->lo, nd->hi, q))
-			continue;
-		if (nd->n > 0) {
-			for (uint32_t i = nd->a; i < nd->a + nd->n; i++)
-				if (overlaps(pi->box[i], pi->box[i] + 3, q))
-					fn(ctx, pi->prim[i]);
-			continue;
+		for (;;) {
+			if (nd->n > 0) {
+				for (uint32_t i = nd->a; i < nd->a + nd->n; i++)
+					if (overlaps(pi->box[i], pi->box[i] + 3, q))
+						fn(ctx, pi->prim[i]);
+				break;
+			}
+			const pm_bvh_node *l = nd + 1, *r = &pi->node[nd->a];
+			int hl = overlaps(l->lo, l->hi, q), hr = overlaps(r->lo, r->hi, q);
+			if (hl && hr) {
+				if (top + 1 > STACK)
+					return;     /* cannot happen with median splits; never overrun */
+				stack[top++] = nd->a;
+				nd = l;
+			} else if (hl)
+				nd = l;
+			else if (hr)
+				nd = r;
+			else
+				break;
 		}
-		if (top + 2 > STACK)
-			return;     /* cannot happen with median splits; never overrun */
-		stack[top++] = nd->a;
-		stack[top++] = (uint32_t)(nd - pi->node) + 1;
 	}
 }
