@@ -44,51 +44,63 @@ select_kth(int *items, const double *mid, int lo, int hi, int k)
 	}
 }
 
-/* Node v over items[first .. first + count): its box, and below it the
- * halves split at the median centre along the axis the centres spread
- * most. */
+/* Node v over items[first .. first + count): below it the halves split at
+ * the median centre along the axis the centres spread most, then its box,
+ * from its items at a leaf and from its children above (the same box: the
+ * smallest of the children's lowest, less grow, is the lowest less grow).
+ * cen holds the centres axis by axis, cen[k * n + b]. */
 static void
-build(pm_boxtree *t, const double (*lo)[3], const double (*hi)[3], double grow, int v, int first, int count)
+build(pm_boxtree *t, const double (*lo)[3], const double (*hi)[3], double grow, int v, int first, int count,
+      const double *cen, int n)
 {
 	pm_boxtree_node *nd = &t->node[v];
 	double clo[3], chi[3];
 
-	for (int k = 0; k < 3; k++) {
-		nd->lo[k] = clo[k] = INFINITY;
-		nd->hi[k] = chi[k] = -INFINITY;
-	}
-	for (int i = first; i < first + count; i++) {
-		int b = t->item[i];
-		for (int k = 0; k < 3; k++) {
-			double c = 0.5 * (lo[b][k] + hi[b][k]);
-			nd->lo[k] = lo[b][k] < nd->lo[k] ? lo[b][k] : nd->lo[k];
-			nd->hi[k] = hi[b][k] > nd->hi[k] ? hi[b][k] : nd->hi[k];
-			clo[k] = c < clo[k] ? c : clo[k];
-			chi[k] = c > chi[k] ? c : chi[k];
-		}
-	}
-	for (int k = 0; k < 3; k++) {
-		nd->lo[k] -= grow;
-		nd->hi[k] += grow;
-	}
 	if (count <= PM_BOXTREE_LEAF) {
+		for (int k = 0; k < 3; k++) {
+			nd->lo[k] = INFINITY;
+			nd->hi[k] = -INFINITY;
+		}
+		for (int i = first; i < first + count; i++) {
+			int b = t->item[i];
+			for (int k = 0; k < 3; k++) {
+				nd->lo[k] = lo[b][k] < nd->lo[k] ? lo[b][k] : nd->lo[k];
+				nd->hi[k] = hi[b][k] > nd->hi[k] ? hi[b][k] : nd->hi[k];
+			}
+		}
+		for (int k = 0; k < 3; k++) {
+			nd->lo[k] -= grow;
+			nd->hi[k] += grow;
+		}
 		nd->first = first;
 		nd->count = count;
 		return;
 	}
+	for (int k = 0; k < 3; k++) {
+		const double *ck = cen + (size_t)k * n;
+		clo[k] = INFINITY;
+		chi[k] = -INFINITY;
+		for (int i = first; i < first + count; i++) {
+			double c = ck[t->item[i]];
+			clo[k] = c < clo[k] ? c : clo[k];
+			chi[k] = c > chi[k] ? c : chi[k];
+		}
+	}
 	int ax = chi[0] - clo[0] >= chi[1] - clo[1] && chi[0] - clo[0] >= chi[2] - clo[2] ? 0
 	         : chi[1] - clo[1] >= chi[2] - clo[2] ? 1 : 2;
-	for (int i = first; i < first + count; i++) {
-		int b = t->item[i];
-		t->mid[b] = 0.5 * (lo[b][ax] + hi[b][ax]);
-	}
 	int half = count / 2, c = t->nnode;
-	select_kth(t->item, t->mid, first, first + count, first + half);
+	select_kth(t->item, cen + (size_t)ax * n, first, first + count, first + half);
 	t->nnode += 2;
+	build(t, lo, hi, grow, c, first, half, cen, n);
+	build(t, lo, hi, grow, c + 1, first + half, count - half, cen, n);
+	nd = &t->node[v];
+	for (int k = 0; k < 3; k++) {
+		const pm_boxtree_node *l = &t->node[c], *r = &t->node[c + 1];
+		nd->lo[k] = l->lo[k] < r->lo[k] ? l->lo[k] : r->lo[k];
+		nd->hi[k] = l->hi[k] > r->hi[k] ? l->hi[k] : r->hi[k];
+	}
 	nd->first = c;
 	nd->count = 0;
-	build(t, lo, hi, grow, c, first, half);
-	build(t, lo, hi, grow, c + 1, first + half, count - half);
 }
 
 int
@@ -99,12 +111,15 @@ pm_boxtree_build(pm_boxtree *t, const double (*lo)[3], const double (*hi)[3], in
 		return 1;
 	if (!pm_grow((void **)&t->node, &t->nodecap, 0, 2 * n, sizeof *t->node) ||
 	    !pm_grow((void **)&t->item, &t->itemcap, 0, n, sizeof *t->item) ||
-	    !pm_grow((void **)&t->mid, &t->midcap, 0, n, sizeof *t->mid))
+	    !pm_grow((void **)&t->mid, &t->midcap, 0, 3 * n, sizeof *t->mid))
 		return 0;
-	for (int i = 0; i < n; i++)
+	for (int i = 0; i < n; i++) {
 		t->item[i] = i;
+		for (int k = 0; k < 3; k++)
+			t->mid[k * n + i] = 0.5 * (lo[i][k] + hi[i][k]);
+	}
 	t->nnode = 1;
-	build(t, lo, hi, grow, 0, 0, n);
+	build(t, lo, hi, grow, 0, 0, n, t->mid, n);
 	return 1;
 }
 

@@ -27,7 +27,7 @@ typedef struct pm_boxtree {
 	int nnode, nodecap;
 	int *item;             /* box numbers, leaf by leaf */
 	int itemcap;
-	double *mid;           /* scratch: box centres while building */
+	double *mid;           /* scratch: box centres, axis by axis, while building */
 	int midcap;
 } pm_boxtree;
 
