@@ -10,15 +10,21 @@ clip_plane(const pm_dvec3 *in, int n, pm_dvec3 p, double off, pm_dvec3 *out)
 {
 	int m = 0;
 
+	if (n <= 0)
+		return 0;
+	/* Each vertex's side once, as the start of one edge and the end of
+	 * the one before. */
+	double s0 = pm_ddot(in[0], p) - off, sa = s0;
 	for (int i = 0; i < n; i++) {
-		pm_dvec3 a = in[i], b = in[(i + 1) % n];
-		double sa = pm_ddot(a, p) - off, sb = pm_ddot(b, p) - off;
+		pm_dvec3 a = in[i], b = in[i + 1 < n ? i + 1 : 0];
+		double sb = i + 1 < n ? pm_ddot(b, p) - off : s0;
 		if (sa <= 0)
 			out[m++] = a;
 		if ((sa < 0 && sb > 0) || (sa > 0 && sb < 0)) {
 			double t = sa / (sa - sb);
 			out[m++] = pm_dadd(a, pm_dscale(pm_dsub(b, a), t));
 		}
+		sa = sb;
 	}
 	return m;
 }
