@@ -224,6 +224,25 @@ stage(const pm_clipper *c, int j, const pm_dvec3 *in, int n, pm_dvec3 *out, int 
 
 #define ARRAY_MAX 64
 
+/* pm_clip_array where a buffer is too small: the streaming clipper, which
+ * needs none and gives the same answer. */
+static int
+streamed(const pm_dvec3 *v, int n, double h, const double *lo, const double *hi,
+         pm_dvec3 normal, pm_dvec3 *out, int cap, double *area, pm_dvec3 *middle)
+{
+	pm_clipper c;
+
+	pm_clip_begin(&c, h);
+	if (lo && hi)
+		pm_clip_bounds(&c, lo, hi);
+	pm_clip_keep(&c, out, cap);
+	for (int i = 0; i < n; i++)
+		pm_clip_vertex(&c, v[i]);
+	*area = pm_clip_end(&c, normal);
+	*middle = pm_clip_middle(&c);
+	return pm_clip_kept(&c);
+}
+
 int
 pm_clip_array(const pm_dvec3 *v, int n, double h, const double *lo, const double *hi,
               pm_dvec3 normal, pm_dvec3 *out, int cap, double *area, pm_dvec3 *middle)
@@ -247,13 +266,13 @@ pm_clip_array(const pm_dvec3 *v, int n, double h, const double *lo, const double
 		pm_dvec3 *dst = j == last ? out : buf[b];
 		m = stage(&c, j, src, m, dst, j == last ? cap : ARRAY_MAX);
 		if (m < 0)
-			return -1;
+			return streamed(v, n, h, lo, hi, normal, out, cap, area, middle);
 		src = dst;
 		b ^= 1;
 	}
 	if (src != out) {
 		if (m > cap)
-			return -1;
+			return streamed(v, n, h, lo, hi, normal, out, cap, area, middle);
 		for (int i = 0; i < m; i++)
 			out[i] = src[i];
 	}

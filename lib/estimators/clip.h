@@ -69,12 +69,12 @@ int pm_clip_kept(const pm_clipper *c);
 /* The same clipping for a polygon in an array v[0..n-1] (relative to the
  * centre), stage after stage over buffers rather than vertex by vertex: the
  * same vertices in the same order, so the same area and middle to the bit,
- * at a fraction of the streaming cost for the few-vertex polygons of a mesh.
- * lo, hi: the polygon's bounds, as pm_clip_bounds; NULL for none. Writes the
- * clipped polygon to out (room for cap) and its area and middle as
- * pm_clip_end and pm_clip_middle give them; returns the vertices written,
- * or -1 where cap or the internal buffers are too small (the streaming
- * clipper has no such limit: use it there). */
+ * at a fraction of the streaming cost for the few-vertex polygons of a mesh
+ * (where its buffers would overflow, it streams). lo, hi: the polygon's
+ * bounds, as pm_clip_bounds; NULL for none. Writes the clipped polygon to
+ * out (room for cap), and its area and middle as pm_clip_end and
+ * pm_clip_middle give them; returns what pm_clip_kept would: the vertices
+ * written, or -1 if there were more than cap. */
 int pm_clip_array(const pm_dvec3 *v, int n, double h, const double *lo, const double *hi,
                   pm_dvec3 normal, pm_dvec3 *out, int cap, double *area, pm_dvec3 *middle);
 

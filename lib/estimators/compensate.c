@@ -391,10 +391,9 @@ visit(void *vctx, uint32_t g)
 	if (!(len > 0))
 		return;
 	N = pm_dscale(N, 1 / len);
-	kept = n <= VISIT_MAX ? pm_clip_array(rv, (int)n, q->h, lo, hi, N, sc->cv + sc->ncv, cap, &A, &mid) : -1;
-	if (kept < 0) {
-		/* Past the array clipper's buffers: the streaming one, which has
-		 * no limit and gives the same answer where both can. */
+	if (n <= VISIT_MAX)
+		kept = pm_clip_array(rv, (int)n, q->h, lo, hi, N, sc->cv + sc->ncv, cap, &A, &mid);
+	else {
 		pm_clip_begin(&cl, q->h);
 		pm_clip_bounds(&cl, lo, hi);
 		pm_clip_keep(&cl, sc->cv + sc->ncv, cap);

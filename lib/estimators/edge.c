@@ -34,10 +34,9 @@ visit(void *ctx, uint32_t poly)
 		double a;
 		for (uint32_t i = 0; i < nv; i++)
 			v[i] = pm_dsub(pm_dfromf(q->pi->verts[s->poly_vert[s->poly_start[poly] + i]]), q->x);
-		if (pm_clip_array(v, (int)nv, q->h, NULL, NULL, n, out, 64, &a, &mid) >= 0) {
-			q->found = a > 0;
-			return;
-		}
+		pm_clip_array(v, (int)nv, q->h, NULL, NULL, n, out, 64, &a, &mid);
+		q->found = a > 0;
+		return;
 	}
 	pm_clip_begin(&c, q->h);
 	for (uint32_t i = s->poly_start[poly]; i < s->poly_start[poly + 1]; i++)

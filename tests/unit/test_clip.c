@@ -278,12 +278,14 @@ TEST(array_matches_streaming)
 				      same_bits(out[i].z, keep[i].z));
 			cut += m != n;
 			compared++;
-			/* Too small an out: -1, never a write past it. */
+			/* Too small an out: -1 as pm_clip_kept gives it, never a
+			 * write past it, and still the area. */
 			if (m > 1) {
 				pm_dvec3 small[64];
 				small[m - 1] = pm_dv3(42, 42, 42);
 				CHECK(pm_clip_array(v, n, h, NULL, NULL, N, small, m - 1, &a, &mid) == -1);
 				CHECK(small[m - 1].x == 42);
+				CHECK(same_bits(a, want));
 			}
 		}
 	}
