@@ -37,6 +37,9 @@
 /* Sample points per polygon that something can hide: GRID x GRID cells of
  * its bounding rectangle, those inside it. */
 #define GRID 8
+/* fates_hit() keeps a polygon's dynamic samples in one 64-bit set, and
+ * sample() packs a cell's column and row in a byte. */
+_Static_assert(GRID * GRID <= 64 && GRID <= 16, "GRID too large for fates_hit()");
 /* Convex polygons up to this many vertices find their cells inside row by row. */
 #define ROW_MAX_VERTS 32
 /* Two planes at most this far from perpendicular (|N_a . N_b| >= LAYER_COS)
@@ -148,6 +151,18 @@ typedef struct cgroup {
 	int q0, nq;
 } cgroup;
 
+/* A sampled polygon's grid, for fates_hit(): the G columns' coordinate
+ * along its plane_axes() t1 (v[0 .. G)) and the rows' along t2
+ * (v[GRID .. GRID + G)), each as sample() worked it out for all of its
+ * cells, and per column and row the set of its dynamic samples there (bit
+ * s: sample s0 + s). A polygon whose cells all missed it has one sample,
+ * its vertices' mean, as a grid of one. */
+typedef struct sgrid {
+	int G;
+	double v[2 * GRID];
+	uint64_t m[2 * GRID];
+} sgrid;
+
 struct pm_comp_scratch {
 	int k;
 	pm_nn *nn;
@@ -173,8 +188,10 @@ struct pm_comp_scratch {
 	int ovcap;
 	int *sf;               /* a covered sample's fate, the same for every
 	                          direction (unused for dynamic ones) */
-	double *sab;           /* a sample's coordinates along its polygon's
-	                          plane_axes() (two a sample), for fates_hit() */
+	unsigned char *scell;  /* a sample's column and row in its polygon's
+	                          grid (16 column + row), while sample() works */
+	sgrid *sgd;            /* per polygon: its samples' grid */
+	int sgdcap;
 	int *gapat;            /* per entry of sc->bl: where in gap its gaps
 	                          are, or -1 before reach() first asks */
 	double *gap;           /* B's d - N_B . v, for P's vertices v: the same
@@ -274,7 +291,8 @@ pm_comp_scratch_free(pm_comp_scratch *sc)
 	free(sc->bl);
 	free(sc->sp);
 	free(sc->sf);
-	free(sc->sab);
+	free(sc->scell);
+	free(sc->sgd);
 	free(sc->gapat);
 	free(sc->gap);
 	free(sc->ov);
@@ -316,7 +334,7 @@ grow_samples(pm_comp_scratch *sc, int need)
 	if (!pm_grow((void **)&sc->sf, &cap, sc->nsp, need, sizeof *sc->sf))
 		return 0;
 	cap = sc->spcap;
-	if (!pm_grow((void **)&sc->sab, &cap, sc->nsp, need, 2 * sizeof *sc->sab))
+	if (!pm_grow((void **)&sc->scell, &cap, sc->nsp, need, sizeof *sc->scell))
 		return 0;
 	sc->spcap = cap;
 	return 1;
@@ -451,7 +469,9 @@ static int
 inside(const pm_comp_scratch *sc, const cpoly *P, pm_dvec3 p, double tol, int edge_in)
 {
 	const double *uv = sc->uv + 2 * P->v0;
-	int u = (P->ax + 1) % 3, w = (P->ax + 2) % 3, in = 0;
+	/* The two axes after ax, from a table: a division per call showed. */
+	static const int next[3] = {1, 2, 0};
+	int u = next[P->ax], w = next[u], in = 0;
 	double pu = comp(p, u), pw = comp(p, w), tu = tol * P->nax, t2 = tu * tu;
 
 	if (p.x < P->lo[0] - tol || p.x > P->hi[0] + tol || p.y < P->lo[1] - tol ||
@@ -613,7 +633,8 @@ fates_hit(const pm_comp_scratch *sc, const cpoly *P, const int *cand, int nc, pm
 	double best[GRID * GRID];
 	int f[GRID * GRID], hit = 0, n = P->ndyn;
 	const pm_dvec3 *y = sc->sp + P->s0;
-	const double *ab = sc->sab + 2 * P->s0;
+	const sgrid *S = &sc->sgd[P - sc->g];
+	uint64_t all = n >= 64 ? ~(uint64_t)0 : ((uint64_t)1 << n) - 1;
 	/* A point y meets B only inside B's shadow along psi on P's plane:
 	 * the box (in P's plane_axes(), as sample() keeps the points) of B's
 	 * vertices moved along psi onto that plane. meets() lets a hit lie off
@@ -621,7 +642,10 @@ fates_hit(const pm_comp_scratch *sc, const cpoly *P, const int *cand, int nc, pm
 	 * which moves its shadow by that times 1 + 1 / |pn|; the box is grown
 	 * by more than twice that, so it only passes over points meets() would
 	 * refuse, and the answers stay the same. Worth its work from a few
-	 * points on (pm_comp_shadow_from). */
+	 * points on (pm_comp_shadow_from). A point lies in the box if its
+	 * column and its row do (the same comparisons of the same numbers),
+	 * so the box is asked of P's grid's columns and rows, not of each
+	 * point. */
 	pm_dvec3 t1 = {0}, t2 = {0};
 	double pn = pm_ddot(P->N, psi), grow = 4 * eps * (1 + 1 / fabs(pn));
 	int cull = n >= pm_comp_shadow_from && fabs(pn) > 1e-3;
@@ -636,13 +660,13 @@ fates_hit(const pm_comp_scratch *sc, const cpoly *P, const int *cand, int nc, pm
 	for (int i = 0; i < nc; i++) {
 		const cpoly *B = &sc->g[IDX(cand[i])];
 		double d = pm_ddot(B->N, psi);
-		double alo = -INFINITY, ahi = INFINITY, blo = -INFINITY, bhi = INFINITY;
+		uint64_t live = all;
 		if (fabs(d) < 1e-9)
 			continue;
 		int fb = (cand[i] & MATTER) && d < 0 ? -1 : 2 * B->obj + (d > 0);
 		if (cull) {
-			alo = blo = INFINITY;
-			ahi = bhi = -INFINITY;
+			double alo = INFINITY, ahi = -INFINITY, blo = INFINITY, bhi = -INFINITY;
+			uint64_t ca = 0, cb = 0;
 			for (int v = B->v0; v < B->v0 + B->nv; v++) {
 				pm_dvec3 q = sc->cv[v];
 				double t = (pm_ddot(P->N, q) - P->d) / pn;
@@ -656,13 +680,18 @@ fates_hit(const pm_comp_scratch *sc, const cpoly *P, const int *cand, int nc, pm
 			ahi += grow;
 			blo -= grow;
 			bhi += grow;
-		}
-		for (int s = 0; s < n; s++) {
-			double t;
-			if (ab[2 * s] < alo || ab[2 * s] > ahi || ab[2 * s + 1] < blo || ab[2 * s + 1] > bhi) {
-				z->shadowed++;
-				continue;
+			for (int c = 0; c < S->G; c++) {
+				if (!(S->v[c] < alo || S->v[c] > ahi))
+					ca |= S->m[c];
+				if (!(S->v[GRID + c] < blo || S->v[GRID + c] > bhi))
+					cb |= S->m[GRID + c];
 			}
+			live = ca & cb & all;
+			z->shadowed += n - __builtin_popcountll(live);
+		}
+		for (; live; live &= live - 1) {
+			int s = __builtin_ctzll(live);
+			double t;
 			if (meets(sc, B, d, y[s], psi, eps, best[s], &t)) {
 				best[s] = t;
 				f[s] = fb;
@@ -1488,8 +1517,11 @@ sample(pm_comp_scratch *sc, cpoly *P, pm_dvec3 xo, double h, double eps)
 	if (P->nr + P->nf > 8 && G > 4)
 		G = 4;
 	/* Twice G x G: the covered ones wait behind while the rest are sorted. */
-	if (!grow_samples(sc, 2 * G * G))
+	if (!grow_samples(sc, 2 * G * G) ||
+	    !pm_grow((void **)&sc->sgd, &sc->sgdcap, 0, sc->ng, sizeof *sc->sgd))
 		return 0;
+	sgrid *S = &sc->sgd[P - sc->g];
+	S->G = G;
 	plane_axes(P->N, &t1, &t2);
 	double va[ROW_MAX_VERTS], vb[ROW_MAX_VERTS];
 	int rows = P->convex && P->nv <= ROW_MAX_VERTS;
@@ -1508,6 +1540,7 @@ sample(pm_comp_scratch *sc, cpoly *P, pm_dvec3 xo, double h, double eps)
 	P->s0 = sc->nsp;
 	for (int i = 0; i < G; i++) {
 		double a = lo1 + (hi1 - lo1) * (i + 0.5) / G, blo = INFINITY, bhi = -INFINITY;
+		S->v[i] = a;
 		/* A convex polygon meets the row in one interval. */
 		for (int e = 0, f = P->nv - 1; rows && e < P->nv; f = e++)
 			if ((va[e] - a) * (va[f] - a) <= 0 && va[e] != va[f]) {
@@ -1518,9 +1551,9 @@ sample(pm_comp_scratch *sc, cpoly *P, pm_dvec3 xo, double h, double eps)
 		for (int j = 0; j < G; j++) {
 			double b = lo2 + (hi2 - lo2) * (j + 0.5) / G;
 			pm_dvec3 p = pm_dadd(base, pm_dadd(pm_dscale(t1, a), pm_dscale(t2, b)));
+			S->v[GRID + j] = b;
 			if (rows ? b >= blo && b <= bhi : inside(sc, P, p, 0, 1)) {
-				sc->sab[2 * (P->s0 + kept)] = a;
-				sc->sab[2 * (P->s0 + kept) + 1] = b;
+				sc->scell[P->s0 + kept] = (unsigned char)(16 * i + j);
 				sc->sp[P->s0 + kept++] = p;
 			}
 		}
@@ -1530,8 +1563,10 @@ sample(pm_comp_scratch *sc, cpoly *P, pm_dvec3 xo, double h, double eps)
 		for (int i = 0; i < P->nv; i++)
 			m = pm_dadd(m, sc->cv[P->v0 + i]);
 		m = pm_dscale(m, 1.0 / P->nv);
-		sc->sab[2 * P->s0] = pm_ddot(m, t1);
-		sc->sab[2 * P->s0 + 1] = pm_ddot(m, t2);
+		S->G = 1;
+		S->v[0] = pm_ddot(m, t1);
+		S->v[GRID] = pm_ddot(m, t2);
+		sc->scell[P->s0] = 0;
 		sc->sp[P->s0 + kept++] = m;
 	}
 	P->ncell = kept;
@@ -1566,8 +1601,7 @@ sample(pm_comp_scratch *sc, cpoly *P, pm_dvec3 xo, double h, double eps)
 		if (f == -1)
 			nopen++;
 		else if (f == -2) {
-			sc->sab[2 * (P->s0 + P->ndyn)] = sc->sab[2 * i];
-			sc->sab[2 * (P->s0 + P->ndyn) + 1] = sc->sab[2 * i + 1];
+			sc->scell[P->s0 + P->ndyn] = sc->scell[i];
 			sc->sp[P->s0 + P->ndyn++] = sc->sp[i];
 		}
 		else {
@@ -1578,6 +1612,13 @@ sample(pm_comp_scratch *sc, cpoly *P, pm_dvec3 xo, double h, double eps)
 	for (int i = 0; i < ncov; i++) {
 		sc->sf[P->s0 + P->ndyn + i] = sc->sf[P->s0 + G * G + i];
 		sc->sp[P->s0 + P->ndyn + i] = sc->sp[P->s0 + G * G + i];
+	}
+	for (int c = 0; c < 2 * GRID; c++)
+		S->m[c] = 0;
+	for (int k = 0; k < P->ndyn; k++) {
+		int cl = sc->scell[P->s0 + k];
+		S->m[cl >> 4] |= (uint64_t)1 << k;
+		S->m[GRID + (cl & 15)] |= (uint64_t)1 << k;
 	}
 	P->ns = P->ndyn + ncov;
 	sc->nsp += P->ns;
