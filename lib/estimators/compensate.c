@@ -462,11 +462,20 @@ visit(void *vctx, uint32_t g)
 	P->rad = 0.5 * pm_dlen(pm_dv3(P->hi[0] - P->lo[0], P->hi[1] - P->lo[1], P->hi[2] - P->lo[2]));
 }
 
+/* 1 if p lies in B's box grown by tol: inside()'s first test, which the
+ * fates of sample points make on their own, inlined (most of them miss). */
+static inline int
+in_box(const cpoly *B, pm_dvec3 p, double tol)
+{
+	return !(p.x < B->lo[0] - tol || p.x > B->hi[0] + tol || p.y < B->lo[1] - tol ||
+	         p.y > B->hi[1] + tol || p.z < B->lo[2] - tol || p.z > B->hi[2] + tol);
+}
+
 /* 1 if point p (near P's plane) is inside P's clipped polygon; within tol
  * of its boundary, edge_in. Crossing number in the coordinate plane P
  * projects best to, where distances shrink by at most P->nax. */
 static int
-inside(const pm_comp_scratch *sc, const cpoly *P, pm_dvec3 p, double tol, int edge_in)
+in_poly(const pm_comp_scratch *sc, const cpoly *P, pm_dvec3 p, double tol, int edge_in)
 {
 	const double *uv = sc->uv + 2 * P->v0;
 	/* The two axes after ax, from a table: a division per call showed. */
@@ -474,9 +483,6 @@ inside(const pm_comp_scratch *sc, const cpoly *P, pm_dvec3 p, double tol, int ed
 	int u = next[P->ax], w = next[u], in = 0;
 	double pu = comp(p, u), pw = comp(p, w), tu = tol * P->nax, t2 = tu * tu;
 
-	if (p.x < P->lo[0] - tol || p.x > P->hi[0] + tol || p.y < P->lo[1] - tol ||
-	    p.y > P->hi[1] + tol || p.z < P->lo[2] - tol || p.z > P->hi[2] + tol)
-		return 0;
 	for (int i = 0, j = P->nv - 1; i < P->nv; j = i++) {
 		double iu = uv[2 * i], iw = uv[2 * i + 1], ju = uv[2 * j], jw = uv[2 * j + 1];
 		double eu = iu - ju, ew = iw - jw;
@@ -496,6 +502,13 @@ inside(const pm_comp_scratch *sc, const cpoly *P, pm_dvec3 p, double tol, int ed
 			return edge_in;
 	}
 	return in;
+}
+
+/* in_poly() where p lies in P's box grown by tol, else 0. */
+static inline int
+inside(const pm_comp_scratch *sc, const cpoly *P, pm_dvec3 p, double tol, int edge_in)
+{
+	return in_box(P, p, tol) && in_poly(sc, P, p, tol, edge_in);
 }
 
 /* 1 if the segment from x' to y crosses polygon B, sx being N_B . x' - d_B.
@@ -526,15 +539,6 @@ seen(pm_comp_scratch *sc, const cpoly *P, pm_dvec3 xo, pm_dvec3 y, double eps)
 			return 0;
 	}
 	return 1;
-}
-
-/* 1 if p lies in B's box grown by tol: inside()'s first test, made before
- * the call where most points miss (the fates of sample points). */
-static inline int
-in_box(const cpoly *B, pm_dvec3 p, double tol)
-{
-	return !(p.x < B->lo[0] - tol || p.x > B->hi[0] + tol || p.y < B->lo[1] - tol ||
-	         p.y > B->hi[1] + tol || p.z < B->lo[2] - tol || p.z > B->hi[2] + tol);
 }
 
 /* seen() for n points y on P at once, blocker by blocker (x's side of each
@@ -592,7 +596,7 @@ meets(const pm_comp_scratch *sc, const cpoly *B, double d, pm_dvec3 y, pm_dvec3 
 		u = 0;
 	}
 	pm_dvec3 p = pm_dadd(y, pm_dscale(psi, u));
-	if (u >= best || !in_box(B, p, eps) || !inside(sc, B, p, eps, 0))
+	if (u >= best || !in_box(B, p, eps) || !in_poly(sc, B, p, eps, 0))
 		return 0;
 	*t = u;
 	return 1;
@@ -630,8 +634,12 @@ static int
 fates_hit(const pm_comp_scratch *sc, const cpoly *P, const int *cand, int nc, pm_dvec3 psi,
           double eps, int fx, pm_comp_stats *z)
 {
+	/* best[s] and f[s] hold only for the points in touched: the others'
+	 * nearest hit is none yet, and their fate -1. Few points meet
+	 * anything, so none of the rest is written or read. */
 	double best[GRID * GRID];
-	int f[GRID * GRID], hit = 0, n = P->ndyn;
+	int f[GRID * GRID], hit = 0, n = P->ndyn, nt = 0;
+	uint64_t touched = 0;
 	const pm_dvec3 *y = sc->sp + P->s0;
 	const sgrid *S = &sc->sgd[P - sc->g];
 	uint64_t all = n >= 64 ? ~(uint64_t)0 : ((uint64_t)1 << n) - 1;
@@ -653,10 +661,6 @@ fates_hit(const pm_comp_scratch *sc, const cpoly *P, const int *cand, int nc, pm
 		plane_axes(P->N, &t1, &t2);
 	double pa = pm_ddot(psi, t1), pb = pm_ddot(psi, t2);
 
-	for (int s = 0; s < n; s++) {
-		best[s] = INFINITY;
-		f[s] = -1;
-	}
 	for (int i = 0; i < nc; i++) {
 		const cpoly *B = &sc->g[IDX(cand[i])];
 		double d = pm_ddot(B->N, psi);
@@ -687,20 +691,23 @@ fates_hit(const pm_comp_scratch *sc, const cpoly *P, const int *cand, int nc, pm
 					cb |= S->m[GRID + c];
 			}
 			live = ca & cb & all;
-			z->shadowed += n - __builtin_popcountll(live);
+			z->shadowed += n;
 		}
 		for (; live; live &= live - 1) {
 			int s = __builtin_ctzll(live);
+			uint64_t bit = (uint64_t)1 << s;
 			double t;
-			if (meets(sc, B, d, y[s], psi, eps, best[s], &t)) {
+			z->shadowed -= cull;
+			if (meets(sc, B, d, y[s], psi, eps, touched & bit ? best[s] : INFINITY, &t)) {
 				best[s] = t;
 				f[s] = fb;
+				touched |= bit;
 			}
 		}
 	}
-	for (int s = 0; s < n; s++)
-		hit += f[s] == fx;
-	return hit;
+	for (; touched; touched &= touched - 1, nt++)
+		hit += f[__builtin_ctzll(touched)] == fx;
+	return hit + (fx == -1 ? n - nt : 0);
 }
 
 /* B->d - N_B . v for P's vertices v, B being the entry e of sc->bl (on P's
