@@ -197,6 +197,11 @@ struct pm_comp_scratch {
 	double *gap;           /* B's d - N_B . v, for P's vertices v: the same
 	                          for every photon (reach()) */
 	int gapatcap, gapcap, ngap;
+	int *shat;             /* per entry of sc->bl: where in sh its B's
+	                          vertices are on P's plane_axes(), or -1 */
+	double *sh;            /* N_P . q - d_P, q . t1, q . t2 for B's
+	                          vertices q (fates_hit()) */
+	int shatcap, shcap, nsh;
 	int nsp, spcap;
 	pm_dvec3 *pyr;         /* one polygon's pyramid from x' (pyramid()) */
 	double *pl;            /* the polygons' planes, one array per number
@@ -294,6 +299,8 @@ pm_comp_scratch_free(pm_comp_scratch *sc)
 	free(sc->scell);
 	free(sc->sgd);
 	free(sc->gapat);
+	free(sc->shat);
+	free(sc->sh);
 	free(sc->gap);
 	free(sc->ov);
 	free(sc->pyr);
@@ -625,13 +632,42 @@ fate(const pm_comp_scratch *sc, const int *cand, int nc, pm_dvec3 y, pm_dvec3 ps
 	return f;
 }
 
+/* Of B's vertex q, what fates_hit() needs whatever the direction: its
+ * height over P's plane, N_P . q - d_P, and its coordinates along P's
+ * plane_axes() t1 and t2. */
+static inline void
+shadow_vert(const cpoly *P, pm_dvec3 q, pm_dvec3 t1, pm_dvec3 t2, double out[3])
+{
+	out[0] = pm_ddot(P->N, q) - P->d;
+	out[1] = pm_ddot(q, t1);
+	out[2] = pm_ddot(q, t2);
+}
+
+/* shadow_vert() for all of B's vertices, B being the entry e of sc->bl (on
+ * P's list): worked out when first asked in an estimate, kept for its other
+ * photons; NULL if there is no room (the caller works them out itself). */
+static const double *
+shadow_verts(pm_comp_scratch *sc, const cpoly *P, const cpoly *B, int e, pm_dvec3 t1, pm_dvec3 t2)
+{
+	if (sc->shat[e] < 0) {
+		if (!pm_grow((void **)&sc->sh, &sc->shcap, sc->nsh, 3 * B->nv, sizeof *sc->sh))
+			return NULL;
+		for (int v = 0; v < B->nv; v++)
+			shadow_vert(P, sc->cv[B->v0 + v], t1, t2, sc->sh + sc->nsh + 3 * v);
+		sc->shat[e] = sc->nsh;
+		sc->nsh += 3 * B->nv;
+	}
+	return sc->sh + sc->shat[e];
+}
+
 /* How many of P's dynamic sample points have fate fx along psi: fate()
  * for each, taken candidate by candidate over all the points (each point's
  * nearest hit so far kept as fate() keeps it, so the answers are fate()'s),
  * which keeps one plane in hand and lets neighbouring points' tests go the
- * same way. */
+ * same way. The candidates are entries of sc->bl (P's list), so that what
+ * is worked out for one is kept for the estimate's other photons. */
 static int
-fates_hit(const pm_comp_scratch *sc, const cpoly *P, const int *cand, int nc, pm_dvec3 psi,
+fates_hit(pm_comp_scratch *sc, const cpoly *P, const int *cand, int nc, pm_dvec3 psi,
           double eps, int fx, pm_comp_stats *z)
 {
 	/* best[s] and f[s] hold only for the points in touched: the others'
@@ -662,19 +698,24 @@ fates_hit(const pm_comp_scratch *sc, const cpoly *P, const int *cand, int nc, pm
 	double pa = pm_ddot(psi, t1), pb = pm_ddot(psi, t2);
 
 	for (int i = 0; i < nc; i++) {
-		const cpoly *B = &sc->g[IDX(cand[i])];
+		int e = cand[i], ce = sc->bl[e];
+		const cpoly *B = &sc->g[IDX(ce)];
 		double d = pm_ddot(B->N, psi);
 		uint64_t live = all;
 		if (fabs(d) < 1e-9)
 			continue;
-		int fb = (cand[i] & MATTER) && d < 0 ? -1 : 2 * B->obj + (d > 0);
+		int fb = (ce & MATTER) && d < 0 ? -1 : 2 * B->obj + (d > 0);
 		if (cull) {
 			double alo = INFINITY, ahi = -INFINITY, blo = INFINITY, bhi = -INFINITY;
 			uint64_t ca = 0, cb = 0;
-			for (int v = B->v0; v < B->v0 + B->nv; v++) {
-				pm_dvec3 q = sc->cv[v];
-				double t = (pm_ddot(P->N, q) - P->d) / pn;
-				double qa = pm_ddot(q, t1) - pa * t, qb = pm_ddot(q, t2) - pb * t;
+			const double *q3 = shadow_verts(sc, P, B, e, t1, t2);
+			for (int v = 0; v < B->nv; v++) {
+				double w[3];
+				if (!q3)
+					shadow_vert(P, sc->cv[B->v0 + v], t1, t2, w);
+				const double *qv = q3 ? q3 + 3 * v : w;
+				double t = qv[0] / pn;
+				double qa = qv[1] - pa * t, qb = qv[2] - pb * t;
 				alo = qa < alo ? qa : alo;
 				ahi = qa > ahi ? qa : ahi;
 				blo = qb < blo ? qb : blo;
@@ -1831,11 +1872,12 @@ weights(const pm_polyindex *pi, pm_vec3 x, pm_vec3 n,
 			}
 	}
 	if (!pm_grow((void **)&sc->gq, &sc->gqcap, 0, sc->ng, sizeof *sc->gq) ||
-	    !pm_grow((void **)&sc->gapat, &sc->gapatcap, 0, sc->nbl, sizeof *sc->gapat))
+	    !pm_grow((void **)&sc->gapat, &sc->gapatcap, 0, sc->nbl, sizeof *sc->gapat) ||
+	    !pm_grow((void **)&sc->shat, &sc->shatcap, 0, sc->nbl, sizeof *sc->shat))
 		goto out;
 	for (int e = 0; e < sc->nbl; e++)
-		sc->gapat[e] = -1;
-	sc->ngap = 0;
+		sc->gapat[e] = sc->shat[e] = -1;
+	sc->ngap = sc->nsh = 0;
 	for (int G = 0, nq = 0; G < sc->ngr; G++) {
 		cgroup *Gr = &sc->gr[G];
 		Gr->simple = Gr->sheet;
@@ -1999,18 +2041,19 @@ weights(const pm_polyindex *pi, pm_vec3 x, pm_vec3 n,
 					if (!gv)
 						goto out;
 					if (reach(sc, P, B, gv, psi, eps))
-						cand[nc++] = sc->bl[P->f0 + b];
+						cand[nc++] = P->f0 + b;
 				}
 				if (nc == 0 && sc->fx[j] < 0) {
 					A += f * (P->aopen + P->adyn);
 					continue;
 				}
-				if (nc == 1 && P->nr == 0 && P->nfc == 0 && P->convex && (cand[0] & FRONT)) {
+				if (nc == 1 && P->nr == 0 && P->nfc == 0 && P->convex && (sc->bl[cand[0]] & FRONT)) {
 					/* One polygon in front of P, all of P seen: what it
 					 * covers of P along psi, exactly. */
-					const cpoly *B = &sc->g[IDX(cand[0])];
+					int c0 = sc->bl[cand[0]];
+					const cpoly *B = &sc->g[IDX(c0)];
 					double dn = pm_ddot(B->N, psi), ov = 0;
-					int fb = (cand[0] & MATTER) && dn < 0 ? -1 : 2 * B->obj + (dn > 0);
+					int fb = (c0 & MATTER) && dn < 0 ? -1 : 2 * B->obj + (dn > 0);
 					if (fb >= 0) {
 						if (!pm_grow((void **)&sc->ov, &sc->ovcap, 0, 2 * (B->nv + P->nv) + 8, sizeof *sc->ov))
 							goto out;
