@@ -151,14 +151,15 @@ typedef struct cgroup {
 	int q0, nq;
 } cgroup;
 
-/* A sampled polygon's grid, for fates_hit(): the G columns' coordinate
- * along its plane_axes() t1 (v[0 .. G)) and the rows' along t2
+/* A sampled polygon's grid, for fates_hit(): its plane_axes() t1 and t2,
+ * the G columns' coordinate along t1 (v[0 .. G)) and the rows' along t2
  * (v[GRID .. GRID + G)), each as sample() worked it out for all of its
  * cells, and per column and row the set of its dynamic samples there (bit
  * s: sample s0 + s). A polygon whose cells all missed it has one sample,
  * its vertices' mean, as a grid of one. */
 typedef struct sgrid {
 	int G;
+	pm_dvec3 t1, t2;
 	double v[2 * GRID];
 	uint64_t m[2 * GRID];
 } sgrid;
@@ -645,7 +646,7 @@ shadow_vert(const cpoly *P, pm_dvec3 q, pm_dvec3 t1, pm_dvec3 t2, double out[3])
 
 /* shadow_vert() for all of B's vertices, B being the entry e of sc->bl (on
  * P's list): worked out when first asked in an estimate, kept for its other
- * photons; NULL if there is no room (the caller works them out itself). */
+ * photons; NULL if there is no room. */
 static const double *
 shadow_verts(pm_comp_scratch *sc, const cpoly *P, const cpoly *B, int e, pm_dvec3 t1, pm_dvec3 t2)
 {
@@ -660,7 +661,8 @@ shadow_verts(pm_comp_scratch *sc, const cpoly *P, const cpoly *B, int e, pm_dvec
 	return sc->sh + sc->shat[e];
 }
 
-/* How many of P's dynamic sample points have fate fx along psi: fate()
+/* How many of P's dynamic sample points have fate fx along psi (-1 if
+ * there is no room for what it keeps): fate()
  * for each, taken candidate by candidate over all the points (each point's
  * nearest hit so far kept as fate() keeps it, so the answers are fate()'s),
  * which keeps one plane in hand and lets neighbouring points' tests go the
@@ -690,12 +692,9 @@ fates_hit(pm_comp_scratch *sc, const cpoly *P, const int *cand, int nc, pm_dvec3
 	 * column and its row do (the same comparisons of the same numbers),
 	 * so the box is asked of P's grid's columns and rows, not of each
 	 * point. */
-	pm_dvec3 t1 = {0}, t2 = {0};
 	double pn = pm_ddot(P->N, psi), grow = 4 * eps * (1 + 1 / fabs(pn));
 	int cull = n >= pm_comp_shadow_from && fabs(pn) > 1e-3;
-	if (cull)
-		plane_axes(P->N, &t1, &t2);
-	double pa = pm_ddot(psi, t1), pb = pm_ddot(psi, t2);
+	double pa = pm_ddot(psi, S->t1), pb = pm_ddot(psi, S->t2);
 
 	for (int i = 0; i < nc; i++) {
 		int e = cand[i], ce = sc->bl[e];
@@ -708,12 +707,11 @@ fates_hit(pm_comp_scratch *sc, const cpoly *P, const int *cand, int nc, pm_dvec3
 		if (cull) {
 			double alo = INFINITY, ahi = -INFINITY, blo = INFINITY, bhi = -INFINITY;
 			uint64_t ca = 0, cb = 0;
-			const double *q3 = shadow_verts(sc, P, B, e, t1, t2);
+			const double *q3 = shadow_verts(sc, P, B, e, S->t1, S->t2);
+			if (!q3)
+				return -1;
 			for (int v = 0; v < B->nv; v++) {
-				double w[3];
-				if (!q3)
-					shadow_vert(P, sc->cv[B->v0 + v], t1, t2, w);
-				const double *qv = q3 ? q3 + 3 * v : w;
+				const double *qv = q3 + 3 * v;
 				double t = qv[0] / pn;
 				double qa = qv[1] - pa * t, qb = qv[2] - pb * t;
 				alo = qa < alo ? qa : alo;
@@ -732,19 +730,20 @@ fates_hit(pm_comp_scratch *sc, const cpoly *P, const int *cand, int nc, pm_dvec3
 					cb |= S->m[GRID + c];
 			}
 			live = ca & cb & all;
-			z->shadowed += n;
 		}
-		for (; live; live &= live - 1) {
+		int tried = 0;
+		for (; live; live &= live - 1, tried++) {
 			int s = __builtin_ctzll(live);
 			uint64_t bit = (uint64_t)1 << s;
 			double t;
-			z->shadowed -= cull;
 			if (meets(sc, B, d, y[s], psi, eps, touched & bit ? best[s] : INFINITY, &t)) {
 				best[s] = t;
 				f[s] = fb;
 				touched |= bit;
 			}
 		}
+		if (cull)
+			z->shadowed += n - tried;
 	}
 	for (; touched; touched &= touched - 1, nt++)
 		hit += f[__builtin_ctzll(touched)] == fx;
@@ -1571,6 +1570,8 @@ sample(pm_comp_scratch *sc, cpoly *P, pm_dvec3 xo, double h, double eps)
 	sgrid *S = &sc->sgd[P - sc->g];
 	S->G = G;
 	plane_axes(P->N, &t1, &t2);
+	S->t1 = t1;
+	S->t2 = t2;
 	double va[ROW_MAX_VERTS], vb[ROW_MAX_VERTS];
 	int rows = P->convex && P->nv <= ROW_MAX_VERTS;
 	for (int i = 0; i < P->nv; i++) {
@@ -1586,6 +1587,8 @@ sample(pm_comp_scratch *sc, cpoly *P, pm_dvec3 xo, double h, double eps)
 	}
 	base = pm_dscale(P->N, P->d);
 	P->s0 = sc->nsp;
+	for (int j = 0; j < G; j++)
+		S->v[GRID + j] = lo2 + (hi2 - lo2) * (j + 0.5) / G;
 	for (int i = 0; i < G; i++) {
 		double a = lo1 + (hi1 - lo1) * (i + 0.5) / G, blo = INFINITY, bhi = -INFINITY;
 		S->v[i] = a;
@@ -1597,9 +1600,8 @@ sample(pm_comp_scratch *sc, cpoly *P, pm_dvec3 xo, double h, double eps)
 				bhi = dmax(bhi, b);
 			}
 		for (int j = 0; j < G; j++) {
-			double b = lo2 + (hi2 - lo2) * (j + 0.5) / G;
+			double b = S->v[GRID + j];
 			pm_dvec3 p = pm_dadd(base, pm_dadd(pm_dscale(t1, a), pm_dscale(t2, b)));
-			S->v[GRID + j] = b;
 			if (rows ? b >= blo && b <= bhi : inside(sc, P, p, 0, 1)) {
 				sc->scell[P->s0 + kept] = (unsigned char)(16 * i + j);
 				sc->sp[P->s0 + kept++] = p;
@@ -2064,6 +2066,8 @@ weights(const pm_polyindex *pi, pm_vec3 x, pm_vec3 n,
 					continue;
 				}
 				int hit = nc > 0 ? fates_hit(sc, P, cand, nc, psi, eps, sc->fx[j], &z) : 0;
+				if (hit < 0)
+					goto out;
 				for (int t = P->s0 + P->ndyn; t < P->s0 + P->ns; t++)
 					hit += sc->sf[t] == sc->fx[j];
 				/* An unsampled polygon has no cells (ncell 0): hit is 0 there,
