@@ -604,10 +604,20 @@ meets(const pm_comp_scratch *sc, const cpoly *B, double d, pm_dvec3 y, pm_dvec3 
 		u = 0;
 	}
 	pm_dvec3 p = pm_dadd(y, pm_dscale(psi, u));
-	if (u >= best || !in_box(B, p, eps) || !in_poly(sc, B, p, eps, 0))
+	if (u >= best || !inside(sc, B, p, eps, 0))
 		return 0;
 	*t = u;
 	return 1;
+}
+
+/* The fate of a backward ray that meets list entry e (polygon B, d being
+ * N_B . psi) first: which object and from which side; -1 for the front of
+ * a solid added by close_matter(): the front of a wall across an edge is
+ * where light comes from, as it is beyond the cube. */
+static inline int
+fate_at(int e, const cpoly *B, double d)
+{
+	return (e & MATTER) && d < 0 ? -1 : 2 * B->obj + (d > 0);
 }
 
 /* The fate of the backward ray from y toward psi through the cube: -1 if it
@@ -626,9 +636,7 @@ fate(const pm_comp_scratch *sc, const int *cand, int nc, pm_dvec3 y, pm_dvec3 ps
 		if (fabs(d) < 1e-9 || !meets(sc, B, d, y, psi, eps, best, &t))
 			continue;
 		best = t;
-		/* The front of a wall across an edge is where light comes from,
-		 * as it is beyond the cube. */
-		f = (cand[i] & MATTER) && d < 0 ? -1 : 2 * B->obj + (d > 0);
+		f = fate_at(cand[i], B, d);
 	}
 	return f;
 }
@@ -703,7 +711,7 @@ fates_hit(pm_comp_scratch *sc, const cpoly *P, const int *cand, int nc, pm_dvec3
 		uint64_t live = all;
 		if (fabs(d) < 1e-9)
 			continue;
-		int fb = (ce & MATTER) && d < 0 ? -1 : 2 * B->obj + (d > 0);
+		int fb = fate_at(ce, B, d);
 		if (cull) {
 			double alo = INFINITY, ahi = -INFINITY, blo = INFINITY, bhi = -INFINITY;
 			uint64_t ca = 0, cb = 0;
@@ -2055,7 +2063,7 @@ weights(const pm_polyindex *pi, pm_vec3 x, pm_vec3 n,
 					int c0 = sc->bl[cand[0]];
 					const cpoly *B = &sc->g[IDX(c0)];
 					double dn = pm_ddot(B->N, psi), ov = 0;
-					int fb = (c0 & MATTER) && dn < 0 ? -1 : 2 * B->obj + (dn > 0);
+					int fb = fate_at(c0, B, dn);
 					if (fb >= 0) {
 						if (!pm_grow((void **)&sc->ov, &sc->ovcap, 0, 2 * (B->nv + P->nv) + 8, sizeof *sc->ov))
 							goto out;
