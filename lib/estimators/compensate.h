@@ -99,6 +99,8 @@ typedef struct pm_comp_stats {
 	int closed;      /* 1 if the cube was closed (see above) */
 	long shadowed;   /* sample points a photon's fate test passed over
 	                    (outside a polygon's shadow; pm_comp_shadow_from) */
+	long waited;     /* fronts of solids a photon's fate test asked only of
+	                    the points something else met (pm_comp_fronts_wait) */
 } pm_comp_stats;
 
 /* The per-photon weights of eq. 3 for m photons already found around x:
@@ -135,6 +137,14 @@ extern int pm_comp_cast_at;
  * work (compensate.c, fates_hit()). 6 unless changed; INT_MAX tests every
  * point. For tests and benchmarks, set before any estimate runs. */
 extern int pm_comp_shadow_from;
+
+/* 1: each photon's test of a polygon's sample points leaves the fronts of
+ * solids met from behind (fate -1, as if the ray left the cube) to the
+ * points something else met, the only ones whose fate they can change:
+ * the same answer for less work (compensate.c, opens_later()). 0 tests
+ * them with the rest. For tests and benchmarks, set before any estimate
+ * runs. */
+extern int pm_comp_fronts_wait;
 
 /* The statistics of the last pm_estimate_compensated call with sc. */
 const pm_comp_stats *pm_comp_last(const pm_comp_scratch *sc);

@@ -1579,7 +1579,7 @@ TEST(short_paths_match_the_general_one)
  * first runs' must be nought where set(0) turns a path off. */
 typedef struct twins {
 	int differ, minpolys;
-	long cast[2], shadowed[2];
+	long cast[2], shadowed[2], waited[2];
 } twins;
 
 static twins
@@ -1619,6 +1619,8 @@ twin_weights(tscene *t, uint64_t seed, void (*set)(int))
 		tw.cast[1] += st2.cast;
 		tw.shadowed[0] += st1.shadowed;
 		tw.shadowed[1] += st2.shadowed;
+		tw.waited[0] += st1.waited;
+		tw.waited[1] += st2.waited;
 	}
 	set(-1);
 	pm_comp_scratch_free(sc);
@@ -1680,6 +1682,55 @@ TEST(shadow_box_drops_no_hit)
 	CHECKF(shadowed > 10000, "only %ld sample points passed over", shadowed);
 }
 
+/* A closed box (a solid) from lo to hi, its faces' normals outward. */
+static void
+ts_box(tscene *t, int obj, pm_vec3 lo, pm_vec3 hi)
+{
+	float dx = hi.x - lo.x, dy = hi.y - lo.y, dz = hi.z - lo.z;
+	ts_rect(t, obj, lo, pm_v3(0, dy, 0), pm_v3(dx, 0, 0));
+	ts_rect(t, obj, pm_v3(lo.x, lo.y, hi.z), pm_v3(dx, 0, 0), pm_v3(0, dy, 0));
+	ts_rect(t, obj, lo, pm_v3(dx, 0, 0), pm_v3(0, 0, dz));
+	ts_rect(t, obj, pm_v3(lo.x, hi.y, lo.z), pm_v3(0, 0, dz), pm_v3(dx, 0, 0));
+	ts_rect(t, obj, lo, pm_v3(0, 0, dz), pm_v3(0, dy, 0));
+	ts_rect(t, obj, pm_v3(hi.x, lo.y, lo.z), pm_v3(0, dy, 0), pm_v3(0, 0, dz));
+}
+
+static void
+set_fronts_wait(int on)
+{
+	pm_comp_fronts_wait = on < 0 ? 1 : on;
+}
+
+/* The fronts of solids met from behind wait for the sample points
+ * something else met (pm_comp_fronts_wait): the weights must be the very
+ * same as testing them with the rest, on a floor with blocks standing on
+ * it and sunk into it (solids the floor lies partly behind) under a cloud
+ * of triangles (what else a backward ray meets, before or after a block),
+ * and fronts must have waited. */
+TEST(fronts_wait_change_nothing)
+{
+	static tscene t;
+	long waited = 0;
+	for (int c = 0; c < 2; c++) {
+		pm_rng r = pm_rng_seed(77, (uint64_t)c);
+		floor_under_cloud(&t, 0, 40, c ? 0.02 : 0.04);
+		for (int i = 0; i < 6; i++) {
+			/* Around the estimates' x (|x|, |y| < 0.03), none over one. */
+			double a = 2 * PM_PI * rnd(&r), rho = 0.06 + 0.03 * rnd(&r), b = 0.005 + 0.01 * rnd(&r);
+			double x = rho * cos(a), y = rho * sin(a);
+			double z0 = i % 2 ? 0 : -0.01 * rnd(&r), z1 = 0.01 + 0.05 * rnd(&r);
+			ts_box(&t, ts_object(&t, 1, 0), pm_v3((float)(x - b), (float)(y - b), (float)z0),
+			       pm_v3((float)(x + b), (float)(y + b), (float)z1));
+		}
+		twins tw = twin_weights(&t, 37 + (uint64_t)c, set_fronts_wait);
+		waited += tw.waited[1];
+		CHECKF(tw.waited[0] == 0 && tw.minpolys > 1, "scene %d: %d polygons, %ld waited", c, tw.minpolys,
+		       tw.waited[0]);
+		CHECKF(tw.differ == 0, "scene %d: weights differ in %d of 20 estimates", c, tw.differ);
+	}
+	CHECKF(waited > 1000, "only %ld fronts waited", waited);
+}
+
 int
 main(void)
 {
@@ -1708,5 +1759,6 @@ main(void)
 	RUN(short_paths_match_the_general_one);
 	RUN(tree_sees_what_the_lists_see);
 	RUN(shadow_box_drops_no_hit);
+	RUN(fronts_wait_change_nothing);
 	return check_done();
 }
