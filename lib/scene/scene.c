@@ -19,6 +19,7 @@
 #include "formats/photonfile.h"
 #include "scene/scene_build.h"
 #include "scene/scene_id.h"
+#include "scene/scene_orient.h"
 #include "scene/scene_limits.h"
 #include "scene/texfilter.h"
 
@@ -1176,6 +1177,7 @@ parse(parser *p, char *data, size_t len)
 		m->strong = m->kind == PM_MAT_MIRROR || m->kind == PM_MAT_GLASS
 			|| (m->kind == PM_MAT_GLOSSY && m->exponent >= s->glossy_threshold);
 	}
+	pm_scene_orient_solids(s);
 	return 0;
 }
 

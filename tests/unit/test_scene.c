@@ -275,6 +275,54 @@ TEST(obj_soup_cube_closed_by_position)
 	}
 }
 
+/* A closed surface round the camera's eye is a room seen from inside
+ * (formats/scene.md, "Solids: which side is matter"): it is turned over,
+ * faces, triangles and shading normals alike, unless it is a one-sided
+ * emitter or glass. The head's eye is (0, 0, 10); "A" puts a cube of side
+ * 4 round it. A lamp shut in a solid the eye is outside of turns nothing. */
+#define A " scale 4 translate -2 -2 8"
+TEST(closed_surface_round_the_eye_turned_over)
+{
+	static const struct {
+		const char *body;
+		int inward;   /* object 0 faces its centre as written */
+		int turned;
+	} v[] = {
+		{"mesh cube.obj white" A "\n", 0, 1},
+		{"mesh cube.obj white scale 4\npointlight 2 2 2 power 1 1 1\n", 0, 0},
+		{"mesh cubein.obj white" A "\n", 1, 0},
+		{"sphere white 0 0 10 1.5 subdiv 2\n", 0, 1},
+		{"box white -2 -2 8  2 2 12\n", 0, 1},
+		{"box white -2 -2 8  2 2 12 inward\n", 1, 0},
+		{"material glow diffuse albedo 0.5 0.5 0.5 emit 1 1 1 twosided\nmesh cube.obj glow" A "\n", 0, 1},
+		{"material glow diffuse albedo 0.5 0.5 0.5 emit 1 1 1\nmesh cube.obj glow" A "\n", 0, 0},
+		{"material clear glass ior 1.5\nmesh cube.obj clear" A "\n", 0, 0},
+		{"mesh cube.obj white" A " smooth\n", 0, 1},
+	};
+	put("cube.obj", CUBE_OBJ);
+	put("cubein.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nv 0 0 1\nv 1 0 1\nv 0 1 1\nv 1 1 1\n"
+		"f 3 7 5 1\nf 6 8 4 2\nf 5 6 2 1\nf 4 8 7 3\nf 2 4 3 1\nf 7 8 6 5\n");
+	for (size_t i = 0; i < sizeof v / sizeof v[0]; i++) {
+		pm_scene s;
+		if (load(&s, v[i].body))
+			return;
+		const pm_object *o = &s.objs[0];
+		pm_vec3 c = pm_v3(0, 0, 0);
+		for (uint32_t k = o->first_vert; k < o->first_vert + o->nverts; k++)
+			c = pm_add(c, pm_scale(s.verts[k], 1.0f / (float)o->nverts));
+		CHECKF(o->solid == 1, "variant %zu: not solid", i);
+		CHECKF(faces_from(&s, 0, c, v[i].turned != v[i].inward ? -1 : 1), "variant %zu: turned %d expected",
+		       i, v[i].turned);
+		for (uint32_t t = o->first_tri; t < o->first_tri + o->ntris; t++)
+			CHECKF(tri_area_along(&s, t) > 0, "variant %zu: triangle %u against its polygon", i, t);
+		CHECK(!o->smooth || s.vnormal);
+		for (uint32_t k = o->first_vert; s.vnormal && o->smooth && k < o->first_vert + o->nverts; k++)
+			CHECKF(pm_dot(s.vnormal[k], pm_sub(s.verts[k], c)) < 0, "variant %zu: shading normal %u", i, k);
+		pm_scene_free(&s);
+	}
+}
+#undef A
+
 TEST(obj_open_plane_is_sheet)
 {
 	pm_scene s;
@@ -712,6 +760,7 @@ main(void)
 	RUN(obj_cube_closed_quads);
 	RUN(off_and_ply_read);
 	RUN(obj_soup_cube_closed_by_position);
+	RUN(closed_surface_round_the_eye_turned_over);
 	RUN(obj_open_plane_is_sheet);
 	RUN(obj_degenerate_faces_dropped);
 	RUN(concave_polygon_ear_clipping);
@@ -725,7 +774,7 @@ main(void)
 	RUN(example_cornell);
 	RUN(example_room);
 	static const char *const files[] = {"t.pms", "h.pms", "bad.pms", "cube.obj", "plane.obj",
-		"degen.obj", "ell.obj", "soup.obj", "bent.obj", "junk.obj", "junk.xyz", "cube.off", "cube.ply"};
+		"degen.obj", "cubein.obj", "ell.obj", "soup.obj", "bent.obj", "junk.obj", "junk.xyz", "cube.off", "cube.ply"};
 	char path[300];
 	for (size_t i = 0; i < sizeof files / sizeof files[0]; i++) {
 		snprintf(path, sizeof path, "%s/%s", dir, files[i]);
