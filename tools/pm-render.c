@@ -84,8 +84,9 @@ static const opt opts[] = {
 	  "taken first and where it meets the photon estimate; cheap next to the estimate, "
 	  "they take the noise out of soft shadows", "4; 1 with -e path", 0 },
 	{ ESTIMATES, "estimates", "pixel|sample", "the photon estimate at a first hit: once per "
-	  "pixel and polygon seen (pixel), or at every camera sample (sample, up to -p "
-	  "times the cost); the expected image is the same", "pixel", 0 },
+	  "pixel and polygon seen (pixel; likewise past a chain of mirrors and glass), or at "
+	  "every camera sample (sample, up to -p times the cost); the expected image is the "
+	  "same", "pixel", 0 },
 	{ MAX_SAMPLES, "max-samples", "N", "refuse -p above N, against typos", "65536", 0 },
 	{ 'P', "pass", "I/N", "pass I of N: seed and time derived from I and N, as pm-shoot -P "
 	  "does (see pm-render(1)); -s and -t override them", "no pass", 0 },

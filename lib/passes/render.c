@@ -77,8 +77,26 @@ typedef struct ctx {
  * kept dim estimates (wide support) and diluted bright ones (narrow
  * support), and a caustic read 10 % dark. */
 #define PX_SLOTS 4
+/* A path's specular bounces before the surface it takes an estimate on:
+ * each a polygon and whether the path crossed it (refraction), if all of
+ * them were mirrors or glass whose weights are untextured, so that every
+ * camera sample along the same chain carries the same weight to that
+ * surface. The pixel's samples along one chain then land on it as its
+ * first hits land on a patch (independent, from one distribution), and
+ * an estimate is shared among them as among first hits, with the same
+ * expectation; through a strong glossy lobe the weights vary with the
+ * direction, and nothing is shared (BENCHMARKS, compcost section). */
+#define CHAIN_MAX 4
+typedef struct chain {
+	int n;                /* bounces so far; -1: past a bounce that shares nothing */
+	uint32_t k[CHAIN_MAX];
+} chain;
+
 typedef struct pxslot {
 	uint32_t key;         /* a patch number */
+	chain ch;             /* for an estimate past specular bounces: */
+	int seen;             /* ... how many of its samples have come */
+	pm_vec3 p1;           /* ... the first one's point */
 	int ok;               /* its estimates after the one that decided are reused */
 	int valid;            /* L and info hold one, to reuse */
 	pm_vec3 L;
@@ -89,6 +107,8 @@ typedef struct pxslot {
 typedef struct pxcache {
 	pxslot s[PX_SLOTS];   /* the patches seen so far, in order */
 	int ns;
+	pxslot d[PX_SLOTS];   /* the same past specular chains */
+	int nd;
 	int allow;            /* from the previous pixel: reuse on allow_poly */
 	uint32_t allow_poly;
 	int rec;              /* this pixel's first estimate, for the next */
@@ -102,16 +122,30 @@ typedef struct pxcache {
 	pm_guide gd;
 } pxcache;
 
+static int
+same_chain(const chain *a, const chain *b)
+{
+	if (a->n != b->n)
+		return 0;
+	for (int i = 0; i < a->n; i++)
+		if (a->k[i] != b->k[i])
+			return 0;
+	return 1;
+}
+
+/* The estimate at h: a first hit's (ch NULL) or one past the specular
+ * chain ch, shared in the pixel's cache pc if that is given. */
 static pm_vec3
 first_estimate(const ctx *c, void *sc, const pm_hit *h, pm_vec3 n, pm_vec3 ns, pm_vec3 wo,
-               const pm_material *m, pxcache *pc, pm_estimate_info *info, int *edge)
+               const pm_material *m, pxcache *pc, const chain *ch, pm_estimate_info *info, int *edge)
 {
 	pm_vec3 L;
 	uint32_t key = c->patch ? c->patch[h->poly] : h->poly;
-	pxslot *sl = NULL;
+	pxslot *sl = NULL, *set = pc ? (ch ? pc->d : pc->s) : NULL;
+	int *nset = pc ? (ch ? &pc->nd : &pc->ns) : NULL;
 
-	for (int i = 0; pc && i < pc->ns && !sl; i++)
-		sl = pc->s[i].key == key ? &pc->s[i] : NULL;
+	for (int i = 0; pc && i < *nset && !sl; i++)
+		sl = set[i].key == key && (!ch || same_chain(&set[i].ch, ch)) ? &set[i] : NULL;
 	if (sl && sl->valid) {
 		*info = sl->info;
 		if (edge)
@@ -127,6 +161,32 @@ first_estimate(const ctx *c, void *sc, const pm_hit *h, pm_vec3 n, pm_vec3 ns, p
 		*edge = pm_polyindex_near_edge(c->in.pi, h->p, info->size);
 	if (!pc)
 		return L;
+	if (ch) {
+		/* Past a chain the footprint can be anything (a ripple in
+		 * water spreads a pixel's samples over the floor below), so
+		 * the first two samples measure it: their points' distance
+		 * against the second one's support. Neither estimate is
+		 * reused, so the one that is (the third) does not depend on
+		 * the points that chose it. */
+		if (!sl) {
+			if (*nset == PX_SLOTS)
+				return L;
+			sl = &set[(*nset)++];
+			sl->key = key;
+			sl->ch = *ch;
+			sl->valid = sl->ok = 0;
+			sl->seen = 1;
+			sl->p1 = h->p;
+		} else if (sl->seen++ == 1) {
+			sl->ok = pm_len(pm_sub(h->p, sl->p1)) <= 0.5f * info->disc;
+		} else if (sl->ok) {
+			sl->valid = 1;
+			sl->L = L;
+			sl->info = *info;
+			sl->edge = 0;
+		}
+		return L;
+	}
 	if (!sl) {
 		/* The footprint's area: the pixel's angle at distance t,
 		 * squared, stretched by the obliquity (capped, for grazing
@@ -141,9 +201,9 @@ first_estimate(const ctx *c, void *sc, const pm_hit *h, pm_vec3 n, pm_vec3 ns, p
 			pc->rec_poly = key;
 		}
 		/* Past PX_SLOTS patches, every sample estimates anew. */
-		if (pc->ns == PX_SLOTS)
+		if (*nset == PX_SLOTS)
 			return L;
-		sl = &pc->s[pc->ns++];
+		sl = &set[(*nset)++];
 		sl->key = key;
 		sl->valid = 0;
 		/* No word from the previous pixel on this patch: this estimate
@@ -174,6 +234,7 @@ walk(const ctx *c, void *sc, pm_vec3 o, pm_vec3 d, int depth, pm_vec3 beta, pm_v
 {
 	int maxd = c->o->max_depth > 0 ? c->o->max_depth : 64;
 	float eta_scale = 1;    /* the product of the refractions' adjoint factors */
+	chain ch = {c->o->estimate_once ? 0 : -1, {0}};
 	pm_hit h;
 
 	for (; depth < maxd; depth++) {
@@ -241,9 +302,11 @@ walk(const ctx *c, void *sc, pm_vec3 o, pm_vec3 d, int depth, pm_vec3 beta, pm_v
 				L = pm_gather_radiance(&c->gather, sc, r, h.p, h.ng, nf, n, wo, m, &info);
 				if (depth == 0)
 					edge = pm_polyindex_near_edge(c->in.pi, h.p, info.size);
+			} else if (depth == 0) {
+				L = first_estimate(c, sc, &h, nf, n, wo, m, c->o->estimate_once ? pc : NULL, NULL,
+				                   &info, &edge);
 			} else {
-				L = first_estimate(c, sc, &h, nf, n, wo, m, depth == 0 && c->o->estimate_once ? pc : NULL,
-				                   &info, depth == 0 ? &edge : NULL);
+				L = first_estimate(c, sc, &h, nf, n, wo, m, ch.n >= 0 ? pc : NULL, &ch, &info, NULL);
 			}
 			*bucket = pm_add(*bucket, pm_mul(beta, L));
 			if (depth == 0) {
@@ -256,6 +319,15 @@ walk(const ctx *c, void *sc, pm_vec3 o, pm_vec3 d, int depth, pm_vec3 beta, pm_v
 		}
 		if (bs.pdf < 0)
 			return;
+		if (ch.n >= 0) {
+			const pm_material *mo = &c->s->mats[c->s->objs[h.obj].material];
+			if (!bs.delta || mo->tks || ch.n == CHAIN_MAX) {
+				ch.n = -1;
+			} else {
+				int crossed = (pm_dot(bs.wi, h.ng) > 0) != (pm_dot(wo, h.ng) > 0);
+				ch.k[ch.n++] = h.poly << 1 | (uint32_t)crossed;
+			}
+		}
 		beta = pm_mul(beta, bs.weight);
 		delta = bs.delta;
 		bpdf = bs.pdf;
@@ -364,7 +436,7 @@ pm_render(const pm_frame *f, const pm_photons *map, const pm_render_opts *o,
 				/* Not zeroed whole: the guide's histogram is read
 				 * only once built (gvalid). */
 				pxcache pc;
-				pc.ns = pc.rec = pc.gvalid = 0;
+				pc.ns = pc.nd = pc.rec = pc.gvalid = 0;
 				pc.allow = allow;
 				pc.allow_poly = allow_poly;
 				for (int k = 0; k < o->spp; k++) {
