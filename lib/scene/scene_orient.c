@@ -78,10 +78,9 @@ turn_over(pm_scene *s, const pm_object *o)
 			s->vnormal[v] = pm_neg(s->vnormal[v]);
 }
 
-int
+void
 pm_scene_orient_solids(pm_scene *s)
 {
-	int turned = 0;
 	for (int i = 0; i < s->nobjs; i++) {
 		const pm_object *o = &s->objs[i];
 		const pm_material *m = &s->mats[o->material];
@@ -90,10 +89,7 @@ pm_scene_orient_solids(pm_scene *s)
 		 * written. */
 		if (!o->solid || !pm_mat_is_photon_surface(m) || (pm_maxc(m->emit) > 0 && !m->emit_twosided))
 			continue;
-		if (holds(s, o, s->camera.eye)) {
+		if (holds(s, o, s->camera.eye))
 			turn_over(s, o);
-			turned++;
-		}
 	}
-	return turned;
 }

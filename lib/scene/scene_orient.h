@@ -9,8 +9,10 @@
 /* Turns over every closed photon-surface object (other than a one-sided
  * emitter) that has the camera's eye inside it as wound: its faces then
  * point into it, as those of a room seen from inside, and its outside
- * counts as matter. Returns how many it turned. Needs the materials'
- * strong flags and the camera. */
-int pm_scene_orient_solids(pm_scene *s);
+ * counts as matter. Needs the materials' strong flags and the camera.
+ * The camera may be written after the objects, so this runs once the
+ * whole file is read, on the built arrays (not through the build's flip,
+ * which acts as each object is added). */
+void pm_scene_orient_solids(pm_scene *s);
 
 #endif
