@@ -12,10 +12,13 @@
  * separate floor quad laid over the room's floor; point or area lights.
  * Later families, drawn from a stream of their own (fam_state) so that a
  * scene none of them touches is byte for byte what it was: rooms of six
- * separate quads (a polygon soup, not one closed box), tables and boxes
+ * separate quads (a polygon soup, not one closed box; half of them then
+ * one OBJ wound outward, from a fourth stream), tables and boxes
  * written as polygon-soup OBJs (every face its own vertices), and curved
  * meshes as Blender's primitives export them (UV spheres 48 x 24, tori
- * 48 x 16, open 48-sided tubes, blobby heads), some as soups.
+ * 48 x 16, open 48-sided tubes, blobby heads), some as soups. A quarter of
+ * the views, from a stream of their own too, look at the top of a wall
+ * and the ceiling over it rather than at the items.
  *
  * Usage: genscene SEED OUTDIR [--furnace] [--size W H]
  *   Writes OUTDIR/scene.pms (and OUTDIR/meshN.obj for the OBJ blocks,
@@ -45,34 +48,35 @@
 #define PI 3.14159265358979323846
 
 /* ---- random numbers: splitmix64 (splitmix.h) ---- */
-/* How an item is written (not where it is) draws from a stream of its own,
- * so that adding such a choice leaves every scene's geometry as it was. */
-static uint64_t form_state;
+/* Side streams: a choice added later draws from a stream of its own, so
+ * that a scene it does not touch stays byte for byte what it was.
+ * side_begin/side_end run the ordinary helpers (rnd, chance, ...) on one. */
+static uint64_t side_keep;
+static void side_begin(const uint64_t *st) { side_keep = rng_state; rng_state = *st; }
+static void side_end(uint64_t *st) { *st = rng_state; rng_state = side_keep; }
 static int
-form_chance(double p)
+side_chance(uint64_t *st, double p)
 {
-	uint64_t keep = rng_state, u;
-	rng_state = form_state;
-	u = next64();
-	form_state = rng_state;
-	rng_state = keep;
-	return (double)(u >> 11) * 0x1.0p-53 < p;
-}
-/* The families added later (rooms of six quads, polygon-soup furniture,
- * curved meshes) draw from a third stream, fam_state: a scene none of them
- * touches stays byte for byte what it was. fam_begin/fam_end run the
- * ordinary helpers (rnd, chance, ...) on that stream. */
-static uint64_t fam_state, fam_keep;
-static void fam_begin(void) { fam_keep = rng_state; rng_state = fam_state; }
-static void fam_end(void) { fam_state = rng_state; rng_state = fam_keep; }
-static int
-fam_chance(double p)
-{
-	fam_begin();
+	uint64_t keep = rng_state;
+	rng_state = *st;
 	int r = (double)(next64() >> 11) * 0x1.0p-53 < p;
-	fam_end();
+	*st = rng_state;
+	rng_state = keep;
 	return r;
 }
+/* How an item is written (not where it is). */
+static uint64_t form_state;
+static int form_chance(double p) { return side_chance(&form_state, p); }
+/* The families added later (rooms of six quads, polygon-soup furniture,
+ * curved meshes). */
+static uint64_t fam_state;
+static void fam_begin(void) { side_begin(&fam_state); }
+static void fam_end(void) { side_end(&fam_state); }
+static int fam_chance(double p) { return side_chance(&fam_state, p); }
+/* Whether a room of six quads is written instead as one OBJ facing out. */
+static uint64_t shell_state;
+/* Whether the camera looks at the top of a wall instead of the items. */
+static uint64_t view_state;
 static double rnd(double a, double b) { return a + (b - a) * unif(); }
 static int irnd(int n) { return (int)(unif() * n); }
 static int chance(double p) { return unif() < p; }
@@ -143,6 +147,21 @@ static int coplanar_floor;  /* a floor quad lying exactly on the room's floor */
 static double rx0, rx1, rz0, rz1;  /* focus region on the floor */
 static int nmesh;
 static const char *outdir;
+
+/* A camera at e would sit within 5 cm of an item's box. */
+static int
+near_items(const double e[3])
+{
+	for (int i = 0; i < nboxes; i++) {
+		int k;
+		for (k = 0; k < 3; k++)
+			if (!(e[k] > boxes[i].lo[k] - 0.05 && e[k] < boxes[i].hi[k] + 0.05))
+				break;
+		if (k == 3)
+			return 1;
+	}
+	return 0;
+}
 
 static int
 overlaps(const aabb *a)
@@ -1020,6 +1039,8 @@ main(int argc, char **argv)
 	rng_state = seed * 0x2545f4914f6cdd1dull + 0x1234567;
 	form_state = seed * 0x9e3779b97f4a7c15ull + 0x7654321;
 	fam_state = seed * 0xd1342543de82ef95ull + 0x2468ace;
+	shell_state = seed * 0xbf58476d1ce4e5b9ull + 0x13579bd;
+	view_state = seed * 0x94d049bb133111ebull + 0x2c1b3c6d;
 	next64();
 
 	/* the room */
@@ -1036,9 +1057,31 @@ main(int argc, char **argv)
 			{ { 0, 0, D }, { 0, H, D }, { W, H, D }, { W, 0, D } },
 			{ { 0, 0, 0 }, { 0, H, 0 }, { 0, H, D }, { 0, 0, D } },
 			{ { W, 0, 0 }, { W, 0, D }, { W, H, D }, { W, H, 0 } } };
-		for (int i = 0; i < 6; i++)
-			emit_quad4(wall, (const double (*)[3])c[i]);
-		sb_printf(&desc, "room of six quads %.1fx%.1fx%.1f", W, D, H);
+		/* Half of them are one OBJ of the six faces wound outward, as a
+		 * modelling program exports a scaled cube (shared corners, or a
+		 * soup of loose faces that pm welds shut): a closed surface
+		 * round the eye, which pm turns over (formats/scene.md). */
+		if (side_chance(&shell_state, 0.5)) {
+			int soup = side_chance(&shell_state, 0.5), fv[24], fs[7];
+			double vt[8][3];
+			for (int i = 0; i < 6; i++) {
+				fs[i] = 4 * i;
+				for (int j = 0; j < 4; j++) {
+					const double *p = c[i][3 - j];
+					int k = (p[0] > 0) | (p[1] > 0) << 1 | (p[2] > 0) << 2;
+					memcpy(vt[k], p, sizeof vt[0]);
+					fv[4 * i + j] = k + 1;
+				}
+			}
+			fs[6] = 24;
+			emit_obj(wall, (const double (*)[3])vt, 8, fv, fs, 6, soup,
+			         soup ? "a room: six faces wound outward, loose" : "a room: six faces wound outward");
+			sb_printf(&desc, "room as one OBJ facing out%s %.1fx%.1fx%.1f", soup ? " (soup)" : "", W, D, H);
+		} else {
+			for (int i = 0; i < 6; i++)
+				emit_quad4(wall, (const double (*)[3])c[i]);
+			sb_printf(&desc, "room of six quads %.1fx%.1fx%.1f", W, D, H);
+		}
 	} else {
 		sb_printf(&geo, "box %s 0 0 0  %.2f %.2f %.2f inward\n", wall, W, H, D);
 		sb_printf(&desc, "room %.1fx%.1fx%.1f", W, D, H);
@@ -1163,15 +1206,7 @@ main(int argc, char **argv)
 		if (t < 0.3)
 			continue;
 		double e[3] = { look[0] + t * dir[0], look[1] + t * dir[1], look[2] + t * dir[2] };
-		int inside = 0;
-		for (int i = 0; i < nboxes && !inside; i++) {
-			int k;
-			for (k = 0; k < 3; k++)
-				if (!(e[k] > boxes[i].lo[k] - 0.05 && e[k] < boxes[i].hi[k] + 0.05))
-					break;
-			inside = k == 3;
-		}
-		if (inside)
+		if (near_items(e))
 			continue;
 		memcpy(eye, e, sizeof eye);
 		break;
@@ -1206,6 +1241,37 @@ main(int argc, char **argv)
 	}
 	if (npoint)
 		sb_printf(&desc, "; point light");
+
+	/* A quarter of the views look instead at the top of a wall, where it
+	 * meets the ceiling (the camera above sees the items, and so almost
+	 * never that corner). Drawn after everything else, from a stream of
+	 * its own, so the rest of the scene is what it was. */
+	if (side_chance(&view_state, 0.25)) {
+		side_begin(&view_state);
+		int wall = irnd(4);
+		double a = rnd(0.25, 0.75), drop = rnd(0.15, 0.6), across = rnd(0.55, 0.9);
+		double ey = rnd(0.9, 1.7), side = rnd(-0.2, 0.2), vf = rnd(35, 60);
+		side_end(&view_state);
+		/* wall 0, 1: x = 0, W; 2, 3: z = 0, D */
+		double L = wall < 2 ? D : W, A = wall < 2 ? W : D;
+		double on = a * L, off = fmin(fmax(across * A, 0.3), A - 0.05);
+		double lk[3], e[3];
+		lk[1] = H - drop;
+		e[1] = fmin(ey, H - 0.05);
+		double lw = wall == 0 || wall == 2 ? 0 : A, ew = wall == 0 || wall == 2 ? off : A - off;
+		double eo = fmin(fmax(on + side * L, 0.05), L - 0.05);
+		if (wall < 2) {
+			lk[0] = lw; lk[2] = on; e[0] = ew; e[2] = eo;
+		} else {
+			lk[2] = lw; lk[0] = on; e[2] = ew; e[0] = eo;
+		}
+		if (!near_items(e)) {
+			memcpy(eye, e, sizeof eye);
+			memcpy(look, lk, sizeof look);
+			fov = vf;
+			sb_printf(&desc, "; view of a wall's top");
+		}
+	}
 
 	/* the file */
 	char path[4096];
