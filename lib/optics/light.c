@@ -462,14 +462,16 @@ pm_lights_sample(const pm_lights *L, pm_vec3 x, pm_rng *r, pm_vec3 *wi, float *d
 {
 	float u0 = pm_rng_f(r), u1 = pm_rng_f(r), u2 = pm_rng_f(r);
 
-	return pm_lights_sample_u(L, x, u0, u1, u2, wi, dist, li, spdf);
+	return pm_lights_sample_u(L, x, u0, u1, u2, wi, dist, li, spdf, NULL);
 }
 
 int
 pm_lights_sample_u(const pm_lights *L, pm_vec3 x, float u0, float u1, float u2, pm_vec3 *wi,
-                   float *dist, pm_vec3 *li, float *spdf)
+                   float *dist, pm_vec3 *li, float *spdf, float *cosl)
 {
 	float pdf;
+	if (cosl)
+		*cosl = 0;
 	const pm_light *l = &L->l[lights_pick(L, u0, &pdf)];
 	pm_vec3 p, v;
 	float d2, d, cl;
@@ -515,6 +517,8 @@ pm_lights_sample_u(const pm_lights *L, pm_vec3 x, float u0, float u1, float u2, 
 		return 0;
 	*li = pm_scale(l->le, cl * l->area / (d2 * pdf));
 	*spdf = pdf * d2 / (cl * l->area);
+	if (cosl)
+		*cosl = cl;
 	return 1;
 }
 

@@ -80,9 +80,11 @@ int pm_lights_sample(const pm_lights *L, pm_vec3 x, pm_rng *r, pm_vec3 *wi, floa
 
 /* The same from given uniform numbers: u0 picks the light, (u1, u2) the
  * point on it, so a caller can stratify (u1, u2) over several samples.
- * pm_lights_sample draws u0, u1, u2 in that order. */
+ * pm_lights_sample draws u0, u1, u2 in that order. If cosl is not NULL it
+ * gets the cosine between wi and the light's surface at the point (an area
+ * light's), or 0 for a light without a surface. */
 int pm_lights_sample_u(const pm_lights *L, pm_vec3 x, float u0, float u1, float u2, pm_vec3 *wi,
-                       float *dist, pm_vec3 *li, float *pdf);
+                       float *dist, pm_vec3 *li, float *pdf, float *cosl);
 
 /* Solid-angle density with which pm_lights_sample, called at x, would pick
  * point p on scene triangle tri (0 if tri does not emit toward x). */

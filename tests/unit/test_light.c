@@ -141,7 +141,7 @@ TEST(spot_edge)
 		double th = deg[k] * PM_PI / 180;
 		pm_vec3 x = pm_v3((float)tan(th), 0, 0), wi, li;
 		float dist, pdf;
-		int r = pm_lights_sample_u(&L, x, 0.5f, 0.5f, 0.5f, &wi, &dist, &li, &pdf);
+		int r = pm_lights_sample_u(&L, x, 0.5f, 0.5f, 0.5f, &wi, &dist, &li, &pdf, NULL);
 		float got = r ? li.x * dist * dist / 4 : 0;
 		CHECKF(fabsf(got - want[k]) < 1e-5f, "%d degrees: factor %g want %g", deg[k], got, want[k]);
 	}
@@ -227,7 +227,7 @@ TEST(env_image)
 		pm_vec3 wi, li, le;
 		float dist, sp, ep;
 		float u1 = (float)((k * 0.618034) - floor(k * 0.618034)), u2 = (k + 0.5f) / 64;
-		if (!pm_lights_sample_u(&L, pm_v3(0, 0.5f, 0), 0.5f, u1, u2, &wi, &dist, &li, &sp))
+		if (!pm_lights_sample_u(&L, pm_v3(0, 0.5f, 0), 0.5f, u1, u2, &wi, &dist, &li, &sp, NULL))
 			continue;
 		le = pm_lights_env(&L, wi, &ep);
 		CHECKF(near(sp, ep, 1e-3) && near(li.x, le.x / sp, 1e-3), "sample %d: pdf %g vs %g, li %g vs %g",
