@@ -166,8 +166,42 @@ TEST(distant_power)
 	CHECKF(fabsf(d.x - 0.70710678f) < 1e-5f && fabsf(d.y + 0.70710678f) < 1e-5f, "dir %g %g", d.x, d.y);
 	pm_vec3 wi, li;
 	float dist, pdf;
-	CHECK(pm_lights_sample_u(&L, pm_v3(0, 0, 0), 0.3f, 0.2f, 0.1f, &wi, &dist, &li, &pdf));
+	CHECK(pm_lights_sample_u(&L, pm_v3(0, 0, 0), 0.3f, 0.2f, 0.1f, &wi, &dist, &li, &pdf, NULL));
 	CHECKF(isinf(dist) && pdf == 0 && li.x == 3, "dist %g pdf %g li %g", dist, pdf, li.x);
+	pm_lights_free(&L);
+	pm_scene_free(&s);
+}
+
+/* What a shadow ray needs to stop short of a light's surface across it
+ * (direct.c): the cosine at the light point, |wi . n| on either side of a
+ * two-sided lamp; 0 for a light without a surface. */
+TEST(sample_cosine_at_the_light)
+{
+	pm_scene s;
+	pm_lights L;
+	pm_error err;
+	if (load(&s, &L, "material lamp diffuse albedo 0 0 0 emit 1 1 1 twosided\n"
+	                 "quad lamp -1 2 1  1 2 1  1 2 -1  -1 2 -1\n"
+	                 "pointlight 0 1 0 power 25 25 25\n", &err)) {
+		CHECKF(0, "%s", err.msg);
+		return;
+	}
+	int area = 0, point = 0;
+	for (int k = 0; k < 64; k++) {
+		pm_vec3 x = k & 1 ? pm_v3(0.3f, 0.5f, -0.2f) : pm_v3(-0.4f, 3.5f, 0.1f), wi, li;
+		float dist, pdf, cosl = -1;
+		float u0 = (k + 0.5f) / 64, u1 = (float)((k * 0.618034) - floor(k * 0.618034)), u2 = (k % 8 + 0.5f) / 8;
+		if (!pm_lights_sample_u(&L, x, u0, u1, u2, &wi, &dist, &li, &pdf, &cosl))
+			continue;
+		if (pdf > 0) {
+			area++;
+			CHECKF(fabsf(cosl - fabsf(wi.y)) < 1e-6f && cosl > 0, "sample %d: cosl %g, |wi.y| %g", k, cosl, fabsf(wi.y));
+		} else {
+			point++;
+			CHECKF(cosl == 0, "sample %d: point light's cosl %g", k, cosl);
+		}
+	}
+	CHECKF(area > 8 && point > 8, "%d area and %d point samples", area, point);
 	pm_lights_free(&L);
 	pm_scene_free(&s);
 }
@@ -318,6 +352,7 @@ main(void)
 	RUN(spot_power_linear);
 	RUN(spot_edge);
 	RUN(distant_power);
+	RUN(sample_cosine_at_the_light);
 	RUN(env_image);
 	RUN(env_constant);
 	RUN(image_decoding);
