@@ -470,11 +470,12 @@ pm_lights_sample_u(const pm_lights *L, pm_vec3 x, float u0, float u1, float u2, 
                    float *dist, pm_vec3 *li, float *spdf, float *cosl)
 {
 	float pdf;
-	if (cosl)
-		*cosl = 0;
 	const pm_light *l = &L->l[lights_pick(L, u0, &pdf)];
 	pm_vec3 p, v;
 	float d2, d, cl;
+
+	if (cosl)
+		*cosl = 0;
 
 	if (l->kind == PM_EMIT_DISTANT || l->kind == PM_EMIT_ENV) {
 		float dp = 0;
