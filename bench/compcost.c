@@ -3,7 +3,7 @@
  * "no cliff"): estimates at the camera's first photon-surface hits (pixel
  * centres), one thread, each timed alone (thread CPU time).
  *
- *   compcost [-c CAST_AT] [-n PHOTONS] [-k K] [-r RUNS] [-o FILE] [-p LO,HI] SCENE
+ *   compcost [-c CAST_AT] [-f GROUPS] [-n PHOTONS] [-k K] [-r RUNS] [-o FILE] [-p LO,HI] SCENE
  *   compcost -t SCENE      (prints the scene's triangles and stops)
  *
  * Prints "name<TAB>value" lines: the median over RUNS of the mean time per
@@ -70,7 +70,7 @@ bin_of(int polys)
 static int
 usage(void)
 {
-	fprintf(stderr, "usage: compcost [-c CAST_AT] [-n PHOTONS] [-k K] [-r RUNS] [-o FILE] [-p LO,HI] SCENE\n");
+	fprintf(stderr, "usage: compcost [-c CAST_AT] [-f GROUPS] [-n PHOTONS] [-k K] [-r RUNS] [-o FILE] [-p LO,HI] SCENE\n");
 	return 2;
 }
 
@@ -103,9 +103,10 @@ main(int argc, char **argv)
 	pm_camera cam;
 	pm_error err;
 
-	while ((c = getopt(argc, argv, "c:k:n:o:p:r:t")) != -1) {
+	while ((c = getopt(argc, argv, "c:f:k:n:o:p:r:t")) != -1) {
 		switch (c) {
 		case 'c': pm_comp_cast_at = atoi(optarg); break;
+		case 'f': pm_comp_fate_cast_from = atoi(optarg); break;
 		case 'k': k = atoi(optarg); break;
 		case 'n': nph = atol(optarg); break;
 		case 'o': out = optarg; break;

@@ -123,16 +123,17 @@ pm_boxtree_build(pm_boxtree *t, const double (*lo)[3], const double (*hi)[3], in
 	return 1;
 }
 
-/* 1 if the segment a + s d, s in [0, 1], meets node box nd. */
-static inline int
-hits(const pm_boxtree_node *nd, const double a[3], const double d[3], const double inv[3])
+/* The part of the segment a + s d, s in [0, smax], in node box nd: its
+ * entry s, or 2 if it misses. */
+static inline double
+entry(const pm_boxtree_node *nd, const double a[3], const double d[3], const double inv[3], double smax)
 {
-	double s0 = 0, s1 = 1;
+	double s0 = 0, s1 = smax;
 
 	for (int k = 0; k < 3; k++) {
 		if (d[k] == 0) {
 			if (a[k] < nd->lo[k] || a[k] > nd->hi[k])
-				return 0;
+				return 2;
 			continue;
 		}
 		double u = (nd->lo[k] - a[k]) * inv[k], v = (nd->hi[k] - a[k]) * inv[k];
@@ -144,9 +145,16 @@ hits(const pm_boxtree_node *nd, const double a[3], const double d[3], const doub
 		s0 = u > s0 ? u : s0;
 		s1 = v < s1 ? v : s1;
 		if (s0 > s1)
-			return 0;
+			return 2;
 	}
-	return 1;
+	return s0;
+}
+
+/* 1 if the segment a + s d, s in [0, 1], meets node box nd. */
+static inline int
+hits(const pm_boxtree_node *nd, const double a[3], const double d[3], const double inv[3])
+{
+	return entry(nd, a, d, inv, 1) <= 1;
 }
 
 int
@@ -174,6 +182,52 @@ pm_boxtree_segment(const pm_boxtree *t, pm_dvec3 a, pm_dvec3 b, int (*f)(void *c
 				return r;
 	}
 	return 0;
+}
+
+void
+pm_boxtree_ray(const pm_boxtree *t, pm_dvec3 a, pm_dvec3 b, double *smax, void (*f)(void *ctx, int i),
+               void *ctx)
+{
+	double pa[3] = {a.x, a.y, a.z}, d[3] = {b.x - a.x, b.y - a.y, b.z - a.z}, inv[3], at[STACK];
+	int stack[STACK], sp = 0;
+
+	if (t->nnode == 0)
+		return;
+	for (int k = 0; k < 3; k++)
+		inv[k] = d[k] != 0 ? 1 / d[k] : 0;
+	if ((at[0] = entry(&t->node[0], pa, d, inv, *smax)) > 1)
+		return;
+	stack[sp++] = 0;
+	while (sp > 0) {
+		sp--;
+		if (at[sp] > *smax)
+			continue;
+		const pm_boxtree_node *nd = &t->node[stack[sp]];
+		if (nd->count > 0) {
+			for (int i = nd->first; i < nd->first + nd->count; i++)
+				f(ctx, t->item[i]);
+			continue;
+		}
+		/* The nearer child on top; a child the segment misses, not at all. */
+		double e0 = entry(&t->node[nd->first], pa, d, inv, *smax);
+		double e1 = entry(&t->node[nd->first + 1], pa, d, inv, *smax);
+		int c0 = nd->first, c1 = nd->first + 1;
+		if (e1 > e0) {
+			double e = e0;
+			e0 = e1;
+			e1 = e;
+			c0 = nd->first + 1;
+			c1 = nd->first;
+		}
+		if (e0 <= 1) {
+			stack[sp] = c0;
+			at[sp++] = e0;
+		}
+		if (e1 <= 1) {
+			stack[sp] = c1;
+			at[sp++] = e1;
+		}
+	}
 }
 
 void

@@ -41,6 +41,13 @@ int pm_boxtree_build(pm_boxtree *t, const double (*lo)[3], const double (*hi)[3]
  * value, or 0. */
 int pm_boxtree_segment(const pm_boxtree *t, pm_dvec3 a, pm_dvec3 b, int (*f)(void *ctx, int i), void *ctx);
 
+/* Calls f(ctx, i) for every box i the segment a-b may pass through no
+ * further than *smax of the way (0 <= *smax <= 1), nearer boxes first as
+ * far as the tree tells; f may lower *smax (a hit found), and boxes the
+ * segment enters beyond it are passed over from then on. */
+void pm_boxtree_ray(const pm_boxtree *t, pm_dvec3 a, pm_dvec3 b, double *smax, void (*f)(void *ctx, int i),
+                    void *ctx);
+
 void pm_boxtree_free(pm_boxtree *t);
 
 #endif

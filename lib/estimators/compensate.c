@@ -12,10 +12,12 @@
  * (sight.h) tested (on a rough mesh, many groups, the pairs are the cost:
  * bench/compcost.sh). A polygon that many may hide stops its walk there
  * and keeps no list: what x' sees of it comes from segments through a tree
- * of the cube's polygons (boxtree.h, seen_cast()).
- * Only polygons that something can hide get sample points, and only their
- * samples cost work per photon; a photon on a sheet nothing touches costs a
- * slab test and a dot product. All geometry is double and relative to x. */
+ * of the cube's polygons (boxtree.h, seen_cast()). In a cube of many
+ * groups (FATE_CAST_GROUPS) there are no lists of what a backward ray may
+ * meet either: each point's ray goes through that tree (cast_fate()).
+ * Only polygons that something can hide (or, there, that are lit and
+ * seen) get sample points, and only their samples cost work per photon; a
+ * photon on a sheet nothing touches costs a slab test and a dot product. All geometry is double and relative to x. */
 #include "estimators/compensate.h"
 
 #include <float.h>
@@ -63,11 +65,13 @@ _Static_assert(GRID * GRID <= 64 && GRID <= 16, "GRID too large for fates_hit()"
  * dense mesh 1.6 times as much for no measurable change in the torture
  * scenes with curved meshes: BENCHMARKS.md, "Sheets".) */
 #define SHEET_COS 0.7
-/* More groups than this in one cube (a rough mesh, facets facing every
- * way): the fates are not followed (every ray counts as open, past what
- * lies on its own plane), which keeps the cost of such cubes bounded; what
- * x' sees still is. A smooth mesh of any density is a few sheets. */
-#define FATE_MAX_GROUPS 96
+/* From this many groups in one cube (a rough mesh, facets facing every
+ * way), the fates of P's points are found by rays through a tree of the
+ * cube's polygons (cast_fate()), asking of each polygon met what P's list
+ * would have said, rather than from lists: those hold, for each polygon,
+ * most of the others, and the work grew with the square of the facets. A
+ * smooth mesh of any density is a few sheets. */
+#define FATE_CAST_GROUPS 97
 /* ... a polygon wholly in front of it. */
 #define FRONT (1 << 29)
 /* From this many polygons in the cube, the candidates that may hide one
@@ -88,6 +92,8 @@ _Static_assert(GRID * GRID <= 64 && GRID <= 16, "GRID too large for fates_hit()"
  * work that grows with the points, not the pairs. */
 #define CAST_AT 16
 int pm_comp_cast_at = CAST_AT;
+int pm_comp_fate_cast_from = FATE_CAST_GROUPS;
+int pm_comp_exact_overlap = 1;
 int pm_comp_shadow_from = 6;
 int pm_comp_fronts_wait = 1;
 #define IDX(e) ((e) & (FRONT - 1))
@@ -122,6 +128,10 @@ typedef struct cpoly {
 	int ndyn;              /* samples whose fate depends on the direction */
 	double adyn;           /* ... their area seen from x' */
 	int grp;               /* its group (cgroup) */
+	int fcast;             /* fates by rays (cast_fate()): no F list, every
+	                          point it shows x' is dynamic */
+	int gpos;              /* its place in sc->gp (list order, cast_fate()) */
+	int orun;              /* its object's run in sc->oby (cast_fate()) */
 } cpoly;
 
 /* The cube's polygons in groups: a sheet (see SHEET_COS), or one polygon.
@@ -241,6 +251,16 @@ struct pm_comp_scratch {
 	double (*bb)[3];       /* ... their boxes' lo, then hi */
 	int bcap;
 	int tree_built;        /* ... made once an estimate, when first asked */
+	int fcast;             /* fates by rays in this cube (FATE_CAST_GROUPS) */
+	uint64_t *okey;        /* object and polygon, while runs are made */
+	int okeycap;
+	int *oby;              /* the polygons by object, and where each */
+	int *orun0;            /* object's run starts (nrun + 1 entries) */
+	int nrun, obycap, orun0cap;
+	int *oclst, *oclv;     /* per run: closed for the polygon asking
+	                          (cast_closed()) if oclst is cstamp */
+	int oclcap, cstamp;
+	int ccur;              /* the polygon the closures in oclv are for */
 	int pyr_of;            /* the polygon whose pyramid sc->pyr holds, or -1 */
 	const unsigned char *cvx;
 	int oom;
@@ -323,6 +343,11 @@ pm_comp_scratch_free(pm_comp_scratch *sc)
 	free(sc->sg);
 	pm_boxtree_free(&sc->tree);
 	free(sc->bb);
+	free(sc->okey);
+	free(sc->oby);
+	free(sc->orun0);
+	free(sc->oclst);
+	free(sc->oclv);
 	free(sc);
 }
 
@@ -819,8 +844,8 @@ gaps(pm_comp_scratch *sc, const cpoly *P, const cpoly *B, int e)
 }
 
 /* 1 if a backward ray along psi from some point of P may meet B: the box
- * of P's vertices moved along psi onto B's plane (a point that would move
- * backwards stays put) meets B's box. */
+ * of P's vertices moved along psi onto B's plane (and, for those that
+ * would move backwards, where they are) meets B's box. */
 static inline __attribute__((always_inline)) int
 reach(const pm_comp_scratch *sc, const cpoly *P, const cpoly *B, const double *gv, pm_dvec3 psi,
       double eps)
@@ -834,22 +859,24 @@ reach(const pm_comp_scratch *sc, const cpoly *P, const cpoly *B, const double *g
 	for (int i = 0; i < P->nv; i++) {
 		pm_dvec3 v = sc->cv[P->v0 + i];
 		double gap = gv[i], t = gap / dn;
-		if (t < 0) {
-			if (fabs(gap) > eps)
-				t = 0;
-			else
-				any = 1;
-		} else
-			any = 1;
-		v = pm_dadd(v, pm_dscale(psi, t > 0 ? t : 0));
-		/* Spelt out per axis (comp()'s branches cost more than the
-		 * rest), plain min and max: v is finite. */
-		lo[0] = v.x < lo[0] ? v.x : lo[0];
-		hi[0] = v.x > hi[0] ? v.x : hi[0];
-		lo[1] = v.y < lo[1] ? v.y : lo[1];
-		hi[1] = v.y > hi[1] ? v.y : hi[1];
-		lo[2] = v.z < lo[2] ? v.z : lo[2];
-		hi[2] = v.z > hi[2] ? v.z : hi[2];
+		any |= t >= 0 || fabs(gap) <= eps;
+		/* A point of P meets B's plane at the same mix of its vertices'
+		 * points there, a vertex's behind the plane included (P across
+		 * it); a point within eps behind meets it where it is. So a
+		 * vertex behind puts both in the box (the box of the vertices
+		 * moved no further than to where they are dropped hits of P
+		 * across B's plane: 215 sample points under the clouds of
+		 * test_compensate). Spelt out per axis (comp()'s branches cost
+		 * more than the rest), plain min and max: v is finite. */
+		for (int k = 0; k < 1 + (t < 0); k++) {
+			pm_dvec3 u = k ? v : pm_dadd(v, pm_dscale(psi, t));
+			lo[0] = u.x < lo[0] ? u.x : lo[0];
+			hi[0] = u.x > hi[0] ? u.x : hi[0];
+			lo[1] = u.y < lo[1] ? u.y : lo[1];
+			hi[1] = u.y > hi[1] ? u.y : hi[1];
+			lo[2] = u.z < lo[2] ? u.z : lo[2];
+			hi[2] = u.z > hi[2] ? u.z : hi[2];
+		}
 	}
 	if (!any)
 		return 0;
@@ -1188,28 +1215,6 @@ plane_covers(const cpoly *P, const cpoly *B)
 	return pm_ddot(B->Ne, P->Ne) < 0 || B->g < P->g;
 }
 
-/* 1 if B, on P's plane, may cover part of P: a vertex or the centre of
- * either lies inside the other, off its edges. Neighbours that only share
- * an edge (the facets of a flat patch) do not; a surface given twice does.
- * (An overlap only by crossing edges is missed: used only where fates are
- * not followed, to keep that from sampling every flat neighbour.) */
-static int
-may_cover(const pm_comp_scratch *sc, const cpoly *P, const cpoly *B, double eps)
-{
-	for (int k = 0; k < 2; k++) {
-		const cpoly *U = k ? B : P, *V = k ? P : B;
-		pm_dvec3 m = pm_dv3(0, 0, 0);
-		for (int i = 0; i < V->nv; i++) {
-			if (inside(sc, U, sc->cv[V->v0 + i], eps, 0))
-				return 1;
-			m = pm_dadd(m, sc->cv[V->v0 + i]);
-		}
-		if (inside(sc, U, pm_dscale(m, 1.0 / V->nv), eps, 0))
-			return 1;
-	}
-	return 0;
-}
-
 /* A ray that meets the back of a solid has gone through its front first,
  * unless it started inside: so where a list holds a solid met from behind,
  * it holds the rest of that solid's polygons in the cube too (each again
@@ -1338,6 +1343,30 @@ typedef struct cast_ctx {
 	double eps;
 } cast_ctx;
 
+/* The tree of the cube's polygons' boxes, grown by 2 eps (past inside()'s
+ * eps), made once an estimate when first asked (seen_cast(), cast_fate()).
+ * 0 if there is no room. */
+static int
+cube_tree(pm_comp_scratch *sc, double eps)
+{
+	int ng = sc->ng;
+
+	if (sc->tree_built)
+		return 1;
+	if (!pm_grow((void **)&sc->bb, &sc->bcap, 0, 2 * ng, sizeof *sc->bb))
+		return 0;
+	for (int b = 0; b < ng; b++)
+		for (int k = 0; k < 3; k++) {
+			sc->bb[b][k] = sc->g[b].lo[k];
+			sc->bb[ng + b][k] = sc->g[b].hi[k];
+		}
+	if (!pm_boxtree_build(&sc->tree, (const double (*)[3])sc->bb, (const double (*)[3])sc->bb + ng, ng,
+	                      2 * eps))
+		return 0;
+	sc->tree_built = 1;
+	return 1;
+}
+
 /* pm_boxtree_segment's question for polygon b: 1 if it hides y from x',
  * with seen()'s test, and is one that pair_lists() would have listed for P
  * (asked only of the few the segment crosses). */
@@ -1364,29 +1393,222 @@ seen_cast(pm_comp_scratch *sc, const cpoly *P, pm_dvec3 xo, pm_dvec3 y, double e
 {
 	cast_ctx q = {sc, P, xo, y, eps};
 
-	if (!sc->tree_built) {
-		int ng = sc->ng;
-		if (!pm_grow((void **)&sc->bb, &sc->bcap, 0, 2 * ng, sizeof *sc->bb)) {
-			sc->oom = 1;
-			return 1;
-		}
-		for (int b = 0; b < ng; b++)
-			for (int k = 0; k < 3; k++) {
-				sc->bb[b][k] = sc->g[b].lo[k];
-				sc->bb[ng + b][k] = sc->g[b].hi[k];
-			}
-		if (!pm_boxtree_build(&sc->tree, (const double (*)[3])sc->bb, (const double (*)[3])sc->bb + ng,
-		                      ng, 2 * eps)) {
-			sc->oom = 1;
-			return 1;
-		}
-		sc->tree_built = 1;
+	if (!cube_tree(sc, eps)) {
+		sc->oom = 1;
+		return 1;
 	}
 	if (sc->pyr_of != (int)(P - sc->g) && !pyramid(sc, P, xo, eps)) {
 		sc->oom = 1;
 		return 1;
 	}
 	return !pm_boxtree_segment(&sc->tree, xo, y, hides, &q);
+}
+
+static int
+cmp_u64(const void *a, const void *b)
+{
+	uint64_t x = *(const uint64_t *)a, y = *(const uint64_t *)b;
+	return (x > y) - (x < y);
+}
+
+/* In a cube whose fates go by rays: the cube's polygons by object (runs
+ * in sc->oby, each polygon's run in orun), for cast_closed(), and each
+ * polygon's place in sc->gp. 0 if there is no room. */
+static int
+cast_prepare(pm_comp_scratch *sc)
+{
+	int ng = sc->ng, old = sc->oclcap;
+
+	if (!pm_grow((void **)&sc->okey, &sc->okeycap, 0, ng, sizeof *sc->okey) ||
+	    !pm_grow((void **)&sc->oby, &sc->obycap, 0, ng, sizeof *sc->oby) ||
+	    !pm_grow((void **)&sc->orun0, &sc->orun0cap, 0, ng + 1, sizeof *sc->orun0) ||
+	    !pm_grow((void **)&sc->oclv, &sc->oclcap, 0, ng, sizeof *sc->oclv))
+		return 0;
+	int cap = old;
+	if (!pm_grow((void **)&sc->oclst, &cap, 0, sc->oclcap, sizeof *sc->oclst))
+		return 0;
+	for (int i = old; i < sc->oclcap; i++)
+		sc->oclst[i] = 0;
+	for (int i = 0; i < ng; i++) {
+		sc->g[sc->gp[i]].gpos = i;
+		sc->okey[i] = (uint64_t)(uint32_t)sc->g[i].obj << 32 | (uint32_t)i;
+	}
+	qsort(sc->okey, (size_t)ng, sizeof *sc->okey, cmp_u64);
+	sc->nrun = 0;
+	for (int i = 0; i < ng; i++) {
+		int b = (int)(uint32_t)sc->okey[i];
+		if (i == 0 || sc->g[b].obj != sc->g[sc->oby[i - 1]].obj)
+			sc->orun0[sc->nrun++] = i;
+		sc->oby[i] = b;
+		sc->g[b].orun = sc->nrun - 1;
+	}
+	sc->orun0[sc->nrun] = ng;
+	sc->ccur = -1;
+	return 1;
+}
+
+/* 1 if P's list would close B's solid (run r): some polygon of it, not P
+ * nor of P's sheet sgrp, no layer over P, has part in front of P and P
+ * lies partly behind its plane (pair_lists()'s MATTER entries, which
+ * close_matter() closes). Worked out once per P and solid. */
+static int
+cast_closed(pm_comp_scratch *sc, const cpoly *P, int r, int sgrp, double eps)
+{
+	int a = (int)(P - sc->g), v = 0;
+
+	if (sc->ccur != a) {
+		sc->ccur = a;
+		if (sc->cstamp == INT_MAX) {
+			for (int i = 0; i < sc->oclcap; i++)
+				sc->oclst[i] = 0;
+			sc->cstamp = 0;
+		}
+		sc->cstamp++;
+	}
+	if (sc->oclst[r] == sc->cstamp)
+		return sc->oclv[r];
+	for (int i = sc->orun0[r]; i < sc->orun0[r + 1] && !v; i++) {
+		const cpoly *C = &sc->g[sc->oby[i]];
+		double lo, hi, plo, phi;
+		if (C == P || C->grp == sgrp || !C->solid || fabs(pm_ddot(C->N, P->N)) >= LAYER_COS)
+			continue;
+		span(sc, C, P->Ne, P->de, &lo, &hi);
+		if (!(hi > eps))
+			continue;
+		span(sc, P, C->N, C->d, &plo, &phi);
+		v = plo < -eps;
+	}
+	sc->oclst[r] = sc->cstamp;
+	sc->oclv[r] = v;
+	return v;
+}
+
+/* What P's list (pair_lists()) would hold of B, neither P nor of P's sheet
+ * sgrp: -1 nothing; 0 a cover on P's plane; 1 a layer with part in front
+ * of P, or a solid P lies partly behind (*matter); 2 another polygon of
+ * such a solid (*matter: close_matter()). */
+static int
+cast_class(pm_comp_scratch *sc, const cpoly *P, const cpoly *B, int sgrp, double eps, int *matter)
+{
+	int layer = fabs(pm_ddot(B->N, P->N)) >= LAYER_COS;
+	double lo, hi, plo, phi;
+
+	*matter = 0;
+	span(sc, B, P->Ne, P->de, &lo, &hi);
+	if (layer && hi <= eps && lo >= -eps) {
+		if (plane_covers(P, B))
+			return 0;
+	} else if (layer && hi > eps)
+		return 1;
+	else if (B->solid && hi > eps) {
+		span(sc, P, B->N, B->d, &plo, &phi);
+		if (plo < -eps) {
+			*matter = 1;
+			return 1;
+		}
+	}
+	if (B->solid && cast_closed(sc, P, B->orun, sgrp, eps)) {
+		*matter = 1;
+		return 2;
+	}
+	return -1;
+}
+
+typedef struct fate_ctx {
+	pm_comp_scratch *sc;
+	const cpoly *P;
+	pm_dvec3 y, psi;
+	double eps, best, len, smax;
+	int sgrp, covers, key, f;
+} fate_ctx;
+
+/* pm_boxtree_ray's question for polygon b along a backward ray: if fate()
+ * over P's list would take b's entry before the best so far (a nearer hit,
+ * or as near and earlier on the list), it becomes the best, and boxes
+ * entered beyond it (by more than eps: a hit lies within eps of its
+ * polygon, whose box the tree grew by 2 eps) need not be asked. */
+static void
+fate_visit(void *vq, int b)
+{
+	fate_ctx *q = vq;
+	pm_comp_scratch *sc = q->sc;
+	const cpoly *B = &sc->g[b], *P = q->P;
+	double d = pm_ddot(B->N, q->psi), t;
+	int matter, cls, key;
+
+	if (B == P || B->grp == q->sgrp || fabs(d) < 1e-9 ||
+	    !meets(sc, B, d, q->y, q->psi, q->eps, nextafter(q->best, INFINITY), &t))
+		return;
+	cls = cast_class(sc, P, B, q->sgrp, q->eps, &matter);
+	if (cls < 0 || (cls == 0 && !q->covers))
+		return;
+	/* List order: covers, then the rest of the walk, then what closing
+	 * solids adds, each in the order of sc->gp. */
+	key = cls * sc->ng + B->gpos;
+	if (t < q->best || key < q->key) {
+		q->best = t;
+		q->key = key;
+		q->f = fate_at(matter ? MATTER : 0, B, d);
+		q->smax = dmin(1, (t + q->eps) / q->len);
+	}
+}
+
+/* fate() of the backward ray from y on P along psi over the list P would
+ * have (pair_lists()), by the polygons whose boxes it passes through:
+ * covers on P's plane taken as any other entry (covers 1, a photon's own
+ * ray) or left out (covers 0: a sample point, which cast_cover() asked
+ * first). sc->oom set if there is no room. */
+static int
+cast_fate(pm_comp_scratch *sc, const cpoly *P, pm_dvec3 y, pm_dvec3 psi, double h, double eps, int covers)
+{
+	/* Every polygon lies in the cube, within 2 sqrt(3) h of y. */
+	fate_ctx q = {sc, P, y, psi, eps, INFINITY, 4 * h, 1, sc->gr[P->grp].sheet ? P->grp : -1, covers, INT_MAX, -1};
+
+	if (!cube_tree(sc, eps)) {
+		sc->oom = 1;
+		return -1;
+	}
+	pm_boxtree_ray(&sc->tree, y, pm_dadd(y, pm_dscale(psi, q.len)), &q.smax, fate_visit, &q);
+	return q.f;
+}
+
+typedef struct cover_ctx {
+	pm_comp_scratch *sc;
+	const cpoly *P;
+	pm_dvec3 y;
+	double eps;
+	int sgrp, best;
+} cover_ctx;
+
+static int
+cover_visit(void *vq, int b)
+{
+	cover_ctx *q = vq;
+	pm_comp_scratch *sc = q->sc;
+	const cpoly *B = &sc->g[b];
+	int matter;
+
+	if (B == q->P || B->grp == q->sgrp || (q->best >= 0 && sc->g[q->best].gpos < B->gpos) ||
+	    !inside(sc, B, q->y, q->eps, 0) || cast_class(sc, q->P, B, q->sgrp, q->eps, &matter) != 0)
+		return 0;
+	q->best = b;
+	return 0;
+}
+
+/* sample()'s cover test for a point y of P whose fates go by rays: the
+ * first cover on P's list (pair_lists()) holding y, as its list's nfc
+ * entries are asked; -1 if none. sc->oom set if there is no room. */
+static int
+cast_cover(pm_comp_scratch *sc, const cpoly *P, pm_dvec3 y, double eps)
+{
+	cover_ctx q = {sc, P, y, eps, sc->gr[P->grp].sheet ? P->grp : -1, -1};
+
+	if (!cube_tree(sc, eps)) {
+		sc->oom = 1;
+		return -1;
+	}
+	pm_boxtree_segment(&sc->tree, y, y, cover_visit, &q);
+	return q.best;
 }
 
 /* With few groups (FEW_GROUPS), asks each once whether it can hide part of
@@ -1432,7 +1654,7 @@ static int
 pair_lists(pm_comp_scratch *sc, const unsigned char *cvx, pm_dvec3 xo, pm_dvec3 n, double eps,
            int *xf0, int *nxf)
 {
-	int ng = sc->ng, ngr = sc->ngr, follow = ngr <= FATE_MAX_GROUPS, grid = ng >= SIGHT_MIN;
+	int ng = sc->ng, ngr = sc->ngr, follow = !sc->fcast, grid = ng >= SIGHT_MIN;
 	/* In a cube for the grid, a walk that finds this many stops (CAST_AT). */
 	int stop = !grid ? INT_MAX : pm_comp_cast_at < 9 ? 9 : pm_comp_cast_at;
 	/* One sheet is all the cube holds: it hides none of itself, and a ray
@@ -1457,20 +1679,18 @@ pair_lists(pm_comp_scratch *sc, const unsigned char *cvx, pm_dvec3 xo, pm_dvec3 
 			sc->gmk[G] = 0;
 	}
 	int built = 0;
-	int xobj[4], nxobj = 0, mixed = 0;
+	int xobj[4], nxobj = 0;
 
-	for (int b = 0; b < ng; b++) {
+	for (int b = 0; b < ng; b++)
 		if (sc->g[b].xon && nxobj < 4)
 			xobj[nxobj++] = sc->g[b].obj;
-		mixed |= sc->g[b].obj != sc->g[0].obj;
-	}
 	double *plsx = sc->pl;
 	for (int b = 0; b < ng; b++)
 		plsx[b] = pm_ddot(sc->g[b].N, xo) - sc->g[b].d;
 	for (int a = 0; a < ng; a++) {
 		cpoly *P = &sc->g[a];
 		const cgroup *SA = &sc->gr[P->grp];
-		int own = nxobj == 4, sgrp = SA->sheet ? P->grp : -1, nc = -1;
+		int own = nxobj == 4, sgrp = SA->sheet ? P->grp : -1;
 		P->r0 = sc->nbl;
 		/* The back of a solid, seen from outside it, is hidden by the
 		 * solid itself, unless x lies on that solid (a face across a
@@ -1518,7 +1738,7 @@ pair_lists(pm_comp_scratch *sc, const unsigned char *cvx, pm_dvec3 xo, pm_dvec3 
 			 * the candidates walked); a smaller one costs the query more
 			 * to leave out than the walk to pass over (scanned). */
 			int skip = sgrp >= 0 && 8 * sc->gr[sgrp].np >= ng ? sgrp : -1;
-			nc = pm_sight_grid_query(&sc->grid, ng, &sc->sg[a], sc->pgrp, skip, sc->cand, sc->mark, st);
+			int nc = pm_sight_grid_query(&sc->grid, ng, &sc->sg[a], sc->pgrp, skip, sc->cand, sc->mark, st);
 			for (int k = 0; k < nc && sc->nbl - P->r0 < stop; k++) {
 				int b = sc->cand[k], G = sc->g[b].grp;
 				double t;
@@ -1542,26 +1762,9 @@ pair_lists(pm_comp_scratch *sc, const unsigned char *cvx, pm_dvec3 xo, pm_dvec3 
 			sc->nbl = P->r0;
 		}
 		P->f0 = sc->nbl;
-		/* What lies on P's plane is listed even where fates are not
-		 * followed: a surface given twice, or a face resting on P, covers
-		 * P's area whatever the direction, so without it a floor given
-		 * twice counts twice (torture seed 166: a floor quad on a room's
-		 * floor under a subdivided sphere read 3 % dark). There, only
-		 * other objects' polygons that the sight grid gave (all, for a wide
-		 * box) are tried: a polygon covering a point of P that x' sees is
-		 * seen in the same direction, and cover matters only where x' sees
-		 * (sample()); a mesh that covers itself is left out, so a cube of
-		 * one object's polygons has nothing to try. */
-		for (int k = 0; !follow && mixed && P->lit && !P->unseen && k < (nc < 0 ? ng : nc); k++) {
-			int b = nc < 0 ? k : sc->cand[k];
-			const cpoly *B = &sc->g[b];
-			double lo, hi;
-			if (B->obj == P->obj || fabs(pm_ddot(B->N, P->N)) < LAYER_COS)
-				continue;
-			span(sc, B, P->Ne, P->de, &lo, &hi);
-			if (hi <= eps && lo >= -eps && plane_covers(P, B) && may_cover(sc, P, B, eps))
-				push(sc, b);
-		}
+		/* Where fates go by rays, no F list: cast_fate() asks what it
+		 * would hold of the polygons a ray meets. */
+		P->fcast = !follow && P->lit && !P->unseen;
 		/* Where they are, one walk: those on P's plane go first, the
 		 * rest wait in sc->cand. */
 		int noff = 0;
@@ -1600,7 +1803,7 @@ pair_lists(pm_comp_scratch *sc, const unsigned char *cvx, pm_dvec3 xo, pm_dvec3 
 		P->nf = sc->nbl - P->f0;
 	}
 	*xf0 = sc->nbl;
-	for (int G = 0; G < ngr && follow; G++) {
+	for (int G = 0; G < ngr; G++) {
 		const cgroup *Gr = &sc->gr[G];
 		if (Gr->xsheet || (Gr->np > 1 && group_behind(Gr, n, 0, -eps)))
 			continue;
@@ -1621,8 +1824,7 @@ pair_lists(pm_comp_scratch *sc, const unsigned char *cvx, pm_dvec3 xo, pm_dvec3 
 	int xs = -1;
 	for (int G = 0; G < ngr && xs < 0; G++)
 		xs = sc->gr[G].xsheet ? G : -1;
-	if (follow)
-		close_matter(sc, *xf0, -1, xs);
+	close_matter(sc, *xf0, -1, xs);
 	*nxf = sc->nbl - *xf0;
 	/* Room for the candidates the photons' loop lists past the end, and
 	 * those that wait. */
@@ -1643,7 +1845,7 @@ sample(pm_comp_scratch *sc, cpoly *P, pm_dvec3 xo, double h, double eps)
 	int kept = 0, G = (int)ceil(GRID * sqrt(P->A / (4 * h * h)));
 
 	G = G < 2 ? 2 : G > GRID ? GRID : G;
-	if (P->nr + P->nf > 8 && G > 4)
+	if ((P->nr + P->nf > 8 || P->fcast) && G > 4)
 		G = 4;
 	/* Twice G x G: the covered ones wait behind while the rest are sorted. */
 	if (!grow_samples(sc, 2 * G * G) ||
@@ -1714,6 +1916,14 @@ sample(pm_comp_scratch *sc, cpoly *P, pm_dvec3 xo, double h, double eps)
 		int f = -1;
 		if (!vis[i - P->s0])
 			continue;
+		/* Fates by rays: a point a cover holds is covered, the others
+		 * are dynamic. */
+		if (P->fcast) {
+			int b = cast_cover(sc, P, sc->sp[i], eps);
+			if (sc->oom)
+				return 0;
+			f = b < 0 ? -2 : 2 * sc->g[b].obj + (pm_ddot(sc->g[b].N, P->Ne) > 0);
+		}
 		/* Covered by a polygon on P's plane: a backward ray meets it at
 		 * once, whatever its direction. */
 		for (int b = 0; b < P->nfc && f < 0; b++) {
@@ -1932,6 +2142,9 @@ weights(const pm_polyindex *pi, pm_vec3 x, pm_vec3 n,
 	}
 	if (!groups(sc, pi->patch, nd))
 		goto out;
+	sc->fcast = sc->ngr >= pm_comp_fate_cast_from;
+	if (sc->fcast && !cast_prepare(sc))
+		goto out;
 	/* What the pair tests need (none, where one sheet is all there is). */
 	for (int a = 0; a < sc->ng && !one_sheet(sc); a++) {
 		cpoly *P = &sc->g[a];
@@ -1948,11 +2161,12 @@ weights(const pm_polyindex *pi, pm_vec3 x, pm_vec3 n,
 		for (int a = 0; a < sc->ng; a++)
 			if (sc->g[a].unseen)
 				sc->g[a].aopen = 0;
-			else if (sc->g[a].nr > 0 || sc->g[a].nf > 0) {
+			else if (sc->g[a].nr > 0 || sc->g[a].nf > 0 || sc->g[a].fcast) {
 				if (!sample(sc, &sc->g[a], xo, h, eps))
 					goto out;
 				z.sampled++;
 				z.cast += sc->g[a].cast;
+				z.fcast += sc->g[a].fcast;
 			}
 	}
 	if (!pm_grow((void **)&sc->gq, &sc->gqcap, 0, sc->ng, sizeof *sc->gq) ||
@@ -1967,14 +2181,14 @@ weights(const pm_polyindex *pi, pm_vec3 x, pm_vec3 n,
 		Gr->simple = Gr->sheet;
 		for (int gi = Gr->p0; gi < Gr->p0 + Gr->np && Gr->simple; gi++) {
 			const cpoly *P = &sc->g[sc->gp[gi]];
-			Gr->simple = !P->unseen && P->nr == 0 && P->nf == 0;
+			Gr->simple = !P->unseen && P->nr == 0 && P->nf == 0 && !P->fcast;
 		}
 		Gr->Vp = pm_dv3(0, 0, 0);
 		Gr->aparp = 0;
 		Gr->q0 = nq;
 		for (int gi = Gr->p0; gi < Gr->p0 + Gr->np && Gr->sheet && !Gr->simple; gi++) {
 			const cpoly *P = &sc->g[sc->gp[gi]];
-			if (P->unseen || P->nr > 0 || P->nf > 0)
+			if (P->unseen || P->nr > 0 || P->nf > 0 || P->fcast)
 				sc->gq[nq++] = sc->gp[gi];
 			else if (P->xpar)
 				Gr->aparp += pm_ddot(P->Ne, nd) > 0 ? P->A : 0;
@@ -2055,7 +2269,9 @@ weights(const pm_polyindex *pi, pm_vec3 x, pm_vec3 n,
 			continue;
 		}
 		sc->fx[j] = fate(sc, sc->bl + xf0, nxf, pm_dv3(0, 0, 0), psi, eps);
-		fy = fate(sc, sc->bl + P->f0, P->nf, r, psi, eps);
+		fy = P->fcast ? cast_fate(sc, P, r, psi, h, eps, 1) : fate(sc, sc->bl + P->f0, P->nf, r, psi, eps);
+		if (sc->oom)
+			goto out;
 		if (fy != sc->fx[j] || (P->nr > 0 && !seen(sc, P, xo, r, eps))) {
 			z.hidden++;
 			continue;
@@ -2105,6 +2321,20 @@ weights(const pm_polyindex *pi, pm_vec3 x, pm_vec3 n,
 				double f = facing(P, psi, c, nd), s = 0;
 				if (!(f > 0) || P->unseen)
 					continue;
+				if (P->fcast) {
+					/* Each point's ray through the tree; the covered
+					 * points' fates were found once (sample()). */
+					int hit = 0;
+					for (int t = P->s0; t < P->s0 + P->ndyn; t++)
+						hit += cast_fate(sc, P, sc->sp[t], psi, h, eps, 0) == sc->fx[j];
+					if (sc->oom)
+						goto out;
+					for (int t = P->s0 + P->ndyn; t < P->s0 + P->ns; t++)
+						hit += sc->sf[t] == sc->fx[j];
+					s = (sc->fx[j] < 0 ? P->aopen : 0) + (hit > 0 ? hit * (P->A / P->ncell) : 0);
+					A += f * s;
+					continue;
+				}
 				/* The polygons off P's plane that a backward ray from P may
 				 * meet along psi; the fronts of solids met from behind
 				 * wait in dcand (opens_later()). */
@@ -2139,7 +2369,8 @@ weights(const pm_polyindex *pi, pm_vec3 x, pm_vec3 n,
 					A += f * (P->aopen + P->adyn);
 					continue;
 				}
-				if (ntot == 1 && P->nr == 0 && P->nfc == 0 && P->convex && (sc->bl[one] & FRONT)) {
+				if (ntot == 1 && P->nr == 0 && P->nfc == 0 && P->convex && (sc->bl[one] & FRONT) &&
+				    pm_comp_exact_overlap) {
 					/* One polygon in front of P, all of P seen: what it
 					 * covers of P along psi, exactly. */
 					int c0 = sc->bl[one];

@@ -96,6 +96,8 @@ typedef struct pm_comp_stats {
 	int sampled;     /* of those, given sample points (something can hide part of it) */
 	int cast;        /* of those, with so many that may hide them that what x'
 	                    sees of them is found through a tree (pm_comp_cast_at) */
+	int fcast;       /* of the sampled, whose fates were found by rays
+	                    (pm_comp_fate_cast_from) */
 	int closed;      /* 1 if the cube was closed (see above) */
 	long shadowed;   /* sample points a photon's fate test passed over
 	                    (outside a polygon's shadow; pm_comp_shadow_from) */
@@ -129,6 +131,23 @@ void pm_comp_weights_cube(const pm_polyindex *pi, pm_vec3 x, pm_vec3 n,
  * (the sampling asks whether there are more than 8); INT_MAX keeps every
  * list. For tests and benchmarks, set before any estimate runs. */
 extern int pm_comp_cast_at;
+
+/* From this many groups in a cube (sheets and lone polygons: a rough mesh),
+ * the fates of its polygons' points are found by rays through a tree of
+ * the cube's polygons, each polygon met asked what the polygon's list would
+ * have said of it, in place of the lists (compensate.c, FATE_CAST_GROUPS):
+ * the same model for work that grows with the points, not the pairs. 97
+ * unless changed; 0 casts in every cube of several polygons, INT_MAX never
+ * (lists only). For tests and benchmarks, set before any estimate runs. */
+extern int pm_comp_fate_cast_from;
+
+/* 1: where a photon's backward rays from a polygon wholly seen from x' can
+ * meet one other polygon only, one wholly in front of it, the area they
+ * meet it from is an exact overlap of the two along the photon's
+ * direction; 0 counts it by the polygon's sample points, as everywhere
+ * else (and as fates by rays always do). For tests, set before any
+ * estimate runs. */
+extern int pm_comp_exact_overlap;
 
 /* From this many sample points of a polygon whose fate depends on the
  * direction, each photon's test of them against a polygon B passes over the

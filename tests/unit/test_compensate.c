@@ -1475,8 +1475,9 @@ floor_under_cloud(tscene *t, int twice, int ntri, double size)
 	}
 }
 
-/* A floor given twice counts once where fates are not followed too: what
- * lies on a polygon's plane covers it whatever the direction. Every
+/* A floor given twice counts once in a cube of many groups too (fates
+ * by rays): what lies on a polygon's plane covers it whatever the
+ * direction. Every
  * photon's weight is the same as with the floor once (before, the second
  * copy was counted: torture seed 166 read 3 % dark under a subdivided
  * sphere). */
@@ -1579,7 +1580,7 @@ TEST(short_paths_match_the_general_one)
  * first runs' must be nought where set(0) turns a path off. */
 typedef struct twins {
 	int differ, minpolys;
-	long cast[2], shadowed[2], waited[2];
+	long cast[2], shadowed[2], waited[2], fcast[2];
 } twins;
 
 static twins
@@ -1621,6 +1622,8 @@ twin_weights(tscene *t, uint64_t seed, void (*set)(int))
 		tw.shadowed[1] += st2.shadowed;
 		tw.waited[0] += st1.waited;
 		tw.waited[1] += st2.waited;
+		tw.fcast[0] += st1.fcast;
+		tw.fcast[1] += st2.fcast;
 	}
 	set(-1);
 	pm_comp_scratch_free(sc);
@@ -1645,7 +1648,7 @@ set_shadow_from(int on)
 /* A polygon of a large cube with many that may hide it keeps no list, and
  * what x' sees of it is found through a tree (pm_comp_cast_at): the
  * weights must be the very same as with every list kept, on a floor under
- * a cloud of 60 triangles (fates followed) and of 150 (not followed), and
+ * a cloud of 60 triangles (fates by lists) and of 150 (by rays), and
  * the tree must have been asked. */
 TEST(tree_sees_what_the_lists_see)
 {
@@ -1695,6 +1698,21 @@ ts_box(tscene *t, int obj, pm_vec3 lo, pm_vec3 hi)
 	ts_rect(t, obj, pm_v3(hi.x, lo.y, lo.z), pm_v3(0, dy, 0), pm_v3(0, 0, dz));
 }
 
+/* n blocks (solids) of half-width b0 to b0 + 0.01 at rho0 to rho0 + drho
+ * from the origin, around the estimates' x (|x|, |y| < 0.03) and none over
+ * one: every other one standing on the floor, the rest sunk into it. */
+static void
+blocks_around(tscene *t, pm_rng *r, int n, double rho0, double drho, double b0)
+{
+	for (int i = 0; i < n; i++) {
+		double a = 2 * PM_PI * rnd(r), rho = rho0 + drho * rnd(r), b = b0 + 0.01 * rnd(r);
+		double x = rho * cos(a), y = rho * sin(a);
+		double z0 = i % 2 ? 0 : -0.01 * rnd(r), z1 = 0.01 + 0.05 * rnd(r);
+		ts_box(t, ts_object(t, 1, 0), pm_v3((float)(x - b), (float)(y - b), (float)z0),
+		       pm_v3((float)(x + b), (float)(y + b), (float)z1));
+	}
+}
+
 static void
 set_fronts_wait(int on)
 {
@@ -1714,14 +1732,7 @@ TEST(fronts_wait_change_nothing)
 	for (int c = 0; c < 2; c++) {
 		pm_rng r = pm_rng_seed(77, (uint64_t)c);
 		floor_under_cloud(&t, 0, 40, c ? 0.02 : 0.04);
-		for (int i = 0; i < 6; i++) {
-			/* Around the estimates' x (|x|, |y| < 0.03), none over one. */
-			double a = 2 * PM_PI * rnd(&r), rho = 0.06 + 0.03 * rnd(&r), b = 0.005 + 0.01 * rnd(&r);
-			double x = rho * cos(a), y = rho * sin(a);
-			double z0 = i % 2 ? 0 : -0.01 * rnd(&r), z1 = 0.01 + 0.05 * rnd(&r);
-			ts_box(&t, ts_object(&t, 1, 0), pm_v3((float)(x - b), (float)(y - b), (float)z0),
-			       pm_v3((float)(x + b), (float)(y + b), (float)z1));
-		}
+		blocks_around(&t, &r, 6, 0.06, 0.03, 0.005);
 		twins tw = twin_weights(&t, 37 + (uint64_t)c, set_fronts_wait);
 		waited += tw.waited[1];
 		CHECKF(tw.waited[0] == 0 && tw.minpolys > 1, "scene %d: %d polygons, %ld waited", c, tw.minpolys,
@@ -1729,6 +1740,41 @@ TEST(fronts_wait_change_nothing)
 		CHECKF(tw.differ == 0, "scene %d: weights differ in %d of 20 estimates", c, tw.differ);
 	}
 	CHECKF(waited > 1000, "only %ld fronts waited", waited);
+}
+
+/* Rays with set(1), lists with set(0), both counting every area by its
+ * sample points (pm_comp_exact_overlap 0: rays know no single blocker). */
+static void
+set_fate_cast(int on)
+{
+	pm_comp_fate_cast_from = on ? 97 : INT_MAX;
+	pm_comp_exact_overlap = on < 0;
+	if (on < 0)
+		pm_comp_fate_cast_from = 97;
+}
+
+/* In a cube of 97 groups or more the fates of a polygon's points are found
+ * by rays through a tree of the cube's polygons, not from lists
+ * (pm_comp_fate_cast_from): the weights must be the very same as with the
+ * lists, under clouds of 150 triangles of two sizes, alone and with blocks
+ * (solids: backs met, fronts that open a ray, solids closed) standing on
+ * and sunk into the floor, and some polygons' fates must have gone by rays. */
+TEST(rays_find_the_fates_the_lists_find)
+{
+	static tscene t;
+	long fcast = 0;
+	for (int c = 0; c < 4; c++) {
+		pm_rng r = pm_rng_seed(79, (uint64_t)c);
+		floor_under_cloud(&t, 0, 150, c % 2 ? 0.02 : 0.05);
+		blocks_around(&t, &r, c < 2 ? 0 : 8, 0.045, 0.04, 0.004);
+		/* set(0) lists, set(1) rays: the rays' counts come second. */
+		twins tw = twin_weights(&t, 41 + (uint64_t)c, set_fate_cast);
+		fcast += tw.fcast[1];
+		CHECKF(tw.fcast[0] == 0 && tw.minpolys >= 97, "scene %d: %d polygons, %ld by rays with lists", c,
+		       tw.minpolys, tw.fcast[0]);
+		CHECKF(tw.differ == 0, "scene %d: weights differ in %d of 20 estimates", c, tw.differ);
+	}
+	CHECKF(fcast > 1000, "only %ld polygons' fates went by rays", fcast);
 }
 
 int
@@ -1760,5 +1806,6 @@ main(void)
 	RUN(tree_sees_what_the_lists_see);
 	RUN(shadow_box_drops_no_hit);
 	RUN(fronts_wait_change_nothing);
+	RUN(rays_find_the_fates_the_lists_find);
 	return check_done();
 }
