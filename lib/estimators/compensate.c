@@ -1536,8 +1536,10 @@ fate_visit(void *vq, int b)
 	double d = pm_ddot(B->N, q->psi), t;
 	int matter, cls, key;
 
+	/* As near as the best counts too (the earlier entry wins): meets()
+	 * asked for hits short of a hair past it, the test below sorts them. */
 	if (B == P || B->grp == q->sgrp || fabs(d) < 1e-9 ||
-	    !meets(sc, B, d, q->y, q->psi, q->eps, nextafter(q->best, INFINITY), &t))
+	    !meets(sc, B, d, q->y, q->psi, q->eps, q->best + 1e-12 * q->best + DBL_MIN, &t))
 		return;
 	cls = cast_class(sc, P, B, q->sgrp, q->eps, &matter);
 	if (cls < 0 || (cls == 0 && !q->covers))
@@ -1545,7 +1547,7 @@ fate_visit(void *vq, int b)
 	/* List order: covers, then the rest of the walk, then what closing
 	 * solids adds, each in the order of sc->gp. */
 	key = cls * sc->ng + B->gpos;
-	if (t < q->best || key < q->key) {
+	if (t < q->best || (t == q->best && key < q->key)) {
 		q->best = t;
 		q->key = key;
 		q->f = fate_at(matter ? MATTER : 0, B, d);
