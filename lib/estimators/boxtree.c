@@ -157,20 +157,21 @@ hits(const pm_boxtree_node *nd, const double a[3], const double d[3], const doub
 	return entry(nd, a, d, inv, 1) <= 1;
 }
 
-int
-pm_boxtree_segment(const pm_boxtree *t, pm_dvec3 a, pm_dvec3 b, int (*f)(void *ctx, int i), void *ctx)
+/* Depth first through the nodes keep() passes (q its question), f asked
+ * of each item of a leaf it passes until f returns nonzero; returns that,
+ * or 0. Inlined with each keep(). */
+static inline int
+walk(const pm_boxtree *t, int (*keep)(const pm_boxtree_node *nd, const void *q), const void *q,
+     int (*f)(void *ctx, int i), void *ctx)
 {
-	double pa[3] = {a.x, a.y, a.z}, d[3] = {b.x - a.x, b.y - a.y, b.z - a.z}, inv[3];
 	int stack[STACK], sp = 0, r;
 
 	if (t->nnode == 0)
 		return 0;
-	for (int k = 0; k < 3; k++)
-		inv[k] = d[k] != 0 ? 1 / d[k] : 0;
 	stack[sp++] = 0;
 	while (sp > 0) {
 		const pm_boxtree_node *nd = &t->node[stack[--sp]];
-		if (!hits(nd, pa, d, inv))
+		if (!keep(nd, q))
 			continue;
 		if (nd->count == 0) {
 			stack[sp++] = nd->first + 1;
@@ -182,6 +183,27 @@ pm_boxtree_segment(const pm_boxtree *t, pm_dvec3 a, pm_dvec3 b, int (*f)(void *c
 				return r;
 	}
 	return 0;
+}
+
+typedef struct segq {
+	double a[3], d[3], inv[3];
+} segq;
+
+static inline int
+seg_keep(const pm_boxtree_node *nd, const void *vq)
+{
+	const segq *q = vq;
+	return hits(nd, q->a, q->d, q->inv);
+}
+
+int
+pm_boxtree_segment(const pm_boxtree *t, pm_dvec3 a, pm_dvec3 b, int (*f)(void *ctx, int i), void *ctx)
+{
+	segq q = {{a.x, a.y, a.z}, {b.x - a.x, b.y - a.y, b.z - a.z}, {0, 0, 0}};
+
+	for (int k = 0; k < 3; k++)
+		q.inv[k] = q.d[k] != 0 ? 1 / q.d[k] : 0;
+	return walk(t, seg_keep, &q, f, ctx);
 }
 
 void
@@ -228,6 +250,27 @@ pm_boxtree_ray(const pm_boxtree *t, pm_dvec3 a, pm_dvec3 b, double *smax, void (
 			at[sp++] = e1;
 		}
 	}
+}
+
+typedef struct halfq {
+	pm_dvec3 N;
+	double d;
+} halfq;
+
+static inline int
+half_keep(const pm_boxtree_node *nd, const void *vq)
+{
+	const halfq *q = vq;
+	pm_dvec3 N = q->N;
+	return (N.x > 0 ? nd->hi[0] : nd->lo[0]) * N.x + (N.y > 0 ? nd->hi[1] : nd->lo[1]) * N.y +
+	       (N.z > 0 ? nd->hi[2] : nd->lo[2]) * N.z > q->d;
+}
+
+int
+pm_boxtree_halfspace(const pm_boxtree *t, pm_dvec3 N, double d, int (*f)(void *ctx, int i), void *ctx)
+{
+	halfq q = {N, d};
+	return walk(t, half_keep, &q, f, ctx);
 }
 
 void

@@ -48,6 +48,11 @@ int pm_boxtree_segment(const pm_boxtree *t, pm_dvec3 a, pm_dvec3 b, int (*f)(voi
 void pm_boxtree_ray(const pm_boxtree *t, pm_dvec3 a, pm_dvec3 b, double *smax, void (*f)(void *ctx, int i),
                     void *ctx);
 
+/* Calls f(ctx, i) for every box i with some point p where N . p > d (the
+ * box as grown; perhaps some more), until f returns nonzero; returns that
+ * value, or 0. */
+int pm_boxtree_halfspace(const pm_boxtree *t, pm_dvec3 N, double d, int (*f)(void *ctx, int i), void *ctx);
+
 void pm_boxtree_free(pm_boxtree *t);
 
 #endif

@@ -2,7 +2,9 @@
  * (lib/estimators/boxtree.c) against a brute force of its own: a box that
  * some point of the segment lies in (found by walking the segment in fine
  * steps, grown as the tree grows it) must be reported, each box at most
- * once; and a query stops where its callback says. */
+ * once; a query stops where its callback says; a ray's search finds the
+ * box it enters first; a half-space query reports every box beyond its
+ * plane. */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -122,10 +124,152 @@ TEST(query_stops_where_asked)
 	pm_boxtree_free(&t);
 }
 
+/* Where the segment a + s (b - a), s in [0, 1], enters box i grown by g,
+ * by slabs; 2 if it misses. */
+static double
+entry_of(pm_dvec3 a, pm_dvec3 b, const double lo[3], const double hi[3], double g)
+{
+	double pa[3] = {a.x, a.y, a.z}, d[3] = {b.x - a.x, b.y - a.y, b.z - a.z}, s0 = 0, s1 = 1;
+	for (int k = 0; k < 3; k++) {
+		if (d[k] == 0) {
+			if (pa[k] < lo[k] - g || pa[k] > hi[k] + g)
+				return 2;
+			continue;
+		}
+		double u = (lo[k] - g - pa[k]) / d[k], v = (hi[k] + g - pa[k]) / d[k];
+		s0 = fmax(s0, fmin(u, v));
+		s1 = fmin(s1, fmax(u, v));
+	}
+	return s0 <= s1 ? s0 : 2;
+}
+
+typedef struct nearest {
+	const double (*lo)[3], (*hi)[3];
+	pm_dvec3 a, b;
+	double g, best, *smax;
+	int calls;
+} nearest;
+
+/* A search for the box the segment enters first, as a ray's first hit is
+ * searched: each box asked lowers the bound to where the segment enters it. */
+static void
+nearer(void *ctx, int i)
+{
+	nearest *q = ctx;
+	double e = entry_of(q->a, q->b, q->lo[i], q->hi[i], q->g);
+	q->calls++;
+	if (e < q->best) {
+		q->best = e;
+		*q->smax = e;
+	}
+}
+
+/* pm_boxtree_ray with a callback that lowers the bound as it goes: it must
+ * find the box the segment enters first (against every box tried), and ask
+ * far fewer boxes than a full walk, among boxes crowded enough that a
+ * segment meets many. */
+TEST(rays_find_the_nearest_box)
+{
+	static double lo[MAXN][3], hi[MAXN][3];
+	static seen_set s;
+	pm_boxtree t = {0};
+	pm_rng r = pm_rng_seed(6, 1);
+	int wrong = 0, rays = 0;
+	long asked = 0, walked = 0;
+
+	for (int round = 0; round < 40; round++) {
+		int n = 1 + (int)(u01(&r) * (MAXN - 1));
+		for (int i = 0; i < n; i++)
+			for (int k = 0; k < 3; k++) {
+				double c = 2 * u01(&r) - 1, w = u01(&r) < 0.2 ? 0 : 0.3 * u01(&r);
+				lo[i][k] = c - w;
+				hi[i][k] = c + w;
+			}
+		double g = round % 2 ? 0.01 : 0;
+		CHECK(pm_boxtree_build(&t, (const double (*)[3])lo, (const double (*)[3])hi, n, g));
+		for (int q = 0; q < 25; q++, rays++) {
+			pm_dvec3 a = pm_dv3(2 * u01(&r) - 1, 2 * u01(&r) - 1, 2 * u01(&r) - 1), b;
+			b = pm_dv3(2 * u01(&r) - 1, 2 * u01(&r) - 1, 2 * u01(&r) - 1);
+			if (q % 5 == 1)
+				b = pm_dv3(a.x, a.y, b.z);
+			double smax = 1, truth = 2;
+			nearest nq = {(const double (*)[3])lo, (const double (*)[3])hi, a, b, g, 2, &smax, 0};
+			pm_boxtree_ray(&t, a, b, &smax, nearer, &nq);
+			for (int i = 0; i < n; i++)
+				truth = fmin(truth, entry_of(a, b, lo[i], hi[i], g));
+			wrong += nq.best != truth;
+			asked += nq.calls;
+			memset(&s, 0, sizeof s);
+			pm_boxtree_segment(&t, a, b, note, &s);
+			walked += s.calls;
+		}
+	}
+	CHECKF(wrong == 0, "%d of %d rays missed the nearest box", wrong, rays);
+	CHECKF(2 * asked < walked, "asked %ld boxes, a full walk %ld", asked, walked);
+	pm_boxtree_free(&t);
+}
+
+typedef struct beyond {
+	int count[MAXN];
+} beyond;
+
+static int
+mark_beyond(void *ctx, int i)
+{
+	((beyond *)ctx)->count[i]++;
+	return 0;
+}
+
+/* pm_boxtree_halfspace must report every box with a corner beyond the
+ * plane, each once, and leave most of the others out. */
+TEST(halfspace_finds_every_box_beyond)
+{
+	static double lo[MAXN][3], hi[MAXN][3];
+	static beyond bs;
+	pm_boxtree t = {0};
+	pm_rng r = pm_rng_seed(7, 1);
+	int missed = 0, twice = 0, due = 0, others = 0, extra = 0;
+
+	for (int round = 0; round < 40; round++) {
+		int n = 1 + (int)(u01(&r) * (MAXN - 1));
+		for (int i = 0; i < n; i++)
+			for (int k = 0; k < 3; k++) {
+				double c = 2 * u01(&r) - 1, w = 0.1 * u01(&r);
+				lo[i][k] = c - w;
+				hi[i][k] = c + w;
+			}
+		CHECK(pm_boxtree_build(&t, (const double (*)[3])lo, (const double (*)[3])hi, n, 0));
+		for (int q = 0; q < 25; q++) {
+			pm_dvec3 N = pm_dv3(2 * u01(&r) - 1, 2 * u01(&r) - 1, 2 * u01(&r) - 1);
+			/* Planes that leave a tenth to most of the boxes beyond. */
+			double d = 0.4 + 0.6 * u01(&r);
+			memset(&bs, 0, sizeof bs);
+			CHECK(pm_boxtree_halfspace(&t, N, d, mark_beyond, &bs) == 0);
+			for (int i = 0; i < n; i++) {
+				int in = 0;
+				for (int c = 0; c < 8; c++)
+					in |= (c & 1 ? hi : lo)[i][0] * N.x + (c & 2 ? hi : lo)[i][1] * N.y +
+					      (c & 4 ? hi : lo)[i][2] * N.z > d;
+				due += in;
+				others += !in;
+				missed += in && bs.count[i] == 0;
+				twice += bs.count[i] > 1;
+				extra += !in && bs.count[i] > 0;
+			}
+		}
+	}
+	CHECKF(missed == 0 && twice == 0 && due > 1000, "%d of %d boxes beyond missed, %d reported twice",
+	       missed, due, twice);
+	CHECKF(extra < others / 4, "%d of %d boxes not beyond reported", extra, others);
+	pm_boxtree_free(&t);
+}
+
 int
 main(void)
 {
 	RUN(segments_find_every_box_they_meet);
 	RUN(query_stops_where_asked);
+	RUN(rays_find_the_nearest_box);
+	RUN(halfspace_finds_every_box_beyond);
 	return check_done();
 }
