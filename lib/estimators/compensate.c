@@ -75,8 +75,8 @@ _Static_assert(GRID * GRID <= 64 && GRID <= 16, "GRID too large for fates_hit()"
 /* There, a polygon whose list would hold at most FRONT_MAX polygons that a
  * ray from it may meet, found among the first FRONT_SCAN whose boxes reach
  * its front, keeps them, and its rays try those alone (front_list()). */
-#define FRONT_MAX 32
-#define FRONT_SCAN 128
+#define FRONT_MAX 16
+#define FRONT_SCAN 64
 /* ... a polygon wholly in front of it. */
 #define FRONT (1 << 29)
 /* From this many polygons in the cube, the candidates that may hide one
@@ -1505,17 +1505,18 @@ cast_closed(pm_comp_scratch *sc, const cpoly *P, int r, int sgrp, double eps)
 }
 
 /* What P's list (pair_lists()) would hold of B, neither P nor of P's sheet
- * sgrp: -1 nothing; 0 a cover on P's plane; 1 a layer with part in front
- * of P, or a solid P lies partly behind (*matter); 2 another polygon of
- * such a solid (*matter: close_matter()). */
+ * sgrp, lo and hi being B's span over P's plane (span()): -1 nothing; 0 a
+ * cover on P's plane; 1 a layer with part in front of P, or a solid P lies
+ * partly behind (*matter); 2 another polygon of such a solid (*matter:
+ * close_matter()). */
 static int
-cast_class(pm_comp_scratch *sc, const cpoly *P, const cpoly *B, int sgrp, double eps, int *matter)
+cast_class_at(pm_comp_scratch *sc, const cpoly *P, const cpoly *B, double lo, double hi, int sgrp,
+              double eps, int *matter)
 {
 	int layer = fabs(pm_ddot(B->N, P->N)) >= LAYER_COS;
-	double lo, hi, plo, phi;
+	double plo, phi;
 
 	*matter = 0;
-	span(sc, B, P->Ne, P->de, &lo, &hi);
 	if (layer && hi <= eps && lo >= -eps) {
 		if (plane_covers(P, B))
 			return 0;
@@ -1533,6 +1534,16 @@ cast_class(pm_comp_scratch *sc, const cpoly *P, const cpoly *B, int sgrp, double
 		return 2;
 	}
 	return -1;
+}
+
+/* cast_class_at() with B's span over P's plane worked out here. */
+static int
+cast_class(pm_comp_scratch *sc, const cpoly *P, const cpoly *B, int sgrp, double eps, int *matter)
+{
+	double lo, hi;
+
+	span(sc, B, P->Ne, P->de, &lo, &hi);
+	return cast_class_at(sc, P, B, lo, hi, sgrp, eps, matter);
 }
 
 typedef struct fate_ctx {
@@ -1624,7 +1635,7 @@ front_visit(void *vq, int b)
 		return 0;
 	if (++q->seen > FRONT_SCAN)
 		return 1;
-	if ((cls = cast_class(sc, P, B, q->sgrp, q->eps, &m)) < 1)
+	if ((cls = cast_class_at(sc, P, B, lo, hi, q->sgrp, q->eps, &m)) < 1)
 		return 0;
 	int cap = sc->flcap;
 	if (P->nfl == FRONT_MAX || !pm_grow((void **)&sc->fl, &sc->flcap, sc->nfl, 1, sizeof *sc->fl) ||
