@@ -268,10 +268,10 @@ struct pm_comp_scratch {
 	int nrun, obycap, orun0cap;
 	int *oclst, *oclv;     /* per run: closed for the polygon asking
 	                          (cast_closed()) if oclst is cstamp */
-	int oclcap, cstamp;
+	int oclstcap, oclcap, cstamp;
 	int *fl, *flk;         /* front_list()'s lists, and each entry's place
 	                          in list order */
-	int flcap, nfl;
+	int flcap, flkcap, nfl;
 	int ccur;              /* the polygon the closures in oclv are for */
 	int pyr_of;            /* the polygon whose pyramid sc->pyr holds, or -1 */
 	const unsigned char *cvx;
@@ -1438,18 +1438,17 @@ cmp_u64(const void *a, const void *b)
 static int
 cast_prepare(pm_comp_scratch *sc)
 {
-	int ng = sc->ng, old = sc->oclcap;
+	int ng = sc->ng, old = sc->oclstcap;
 
+	if (!pm_grow((void **)&sc->oclst, &sc->oclstcap, 0, ng, sizeof *sc->oclst))
+		return 0;
+	for (int i = old; i < sc->oclstcap; i++)
+		sc->oclst[i] = 0;
 	if (!pm_grow((void **)&sc->okey, &sc->okeycap, 0, ng, sizeof *sc->okey) ||
 	    !pm_grow((void **)&sc->oby, &sc->obycap, 0, ng, sizeof *sc->oby) ||
 	    !pm_grow((void **)&sc->orun0, &sc->orun0cap, 0, ng + 1, sizeof *sc->orun0) ||
 	    !pm_grow((void **)&sc->oclv, &sc->oclcap, 0, ng, sizeof *sc->oclv))
 		return 0;
-	int cap = old;
-	if (!pm_grow((void **)&sc->oclst, &cap, 0, sc->oclcap, sizeof *sc->oclst))
-		return 0;
-	for (int i = old; i < sc->oclcap; i++)
-		sc->oclst[i] = 0;
 	for (int i = 0; i < ng; i++) {
 		sc->g[sc->gp[i]].gpos = i;
 		sc->okey[i] = (uint64_t)(uint32_t)sc->g[i].obj << 32 | (uint32_t)i;
@@ -1480,7 +1479,7 @@ cast_closed(pm_comp_scratch *sc, const cpoly *P, int r, int sgrp, double eps)
 	if (sc->ccur != a) {
 		sc->ccur = a;
 		if (sc->cstamp == INT_MAX) {
-			for (int i = 0; i < sc->oclcap; i++)
+			for (int i = 0; i < sc->oclstcap; i++)
 				sc->oclst[i] = 0;
 			sc->cstamp = 0;
 		}
@@ -1637,9 +1636,8 @@ front_visit(void *vq, int b)
 		return 1;
 	if ((cls = cast_class_at(sc, P, B, lo, hi, q->sgrp, q->eps, &m)) < 1)
 		return 0;
-	int cap = sc->flcap;
 	if (P->nfl == FRONT_MAX || !pm_grow((void **)&sc->fl, &sc->flcap, sc->nfl, 1, sizeof *sc->fl) ||
-	    !pm_grow((void **)&sc->flk, &cap, sc->nfl, 1, sizeof *sc->flk))
+	    !pm_grow((void **)&sc->flk, &sc->flkcap, sc->nfl, 1, sizeof *sc->flk))
 		return 1;
 	/* In list order (fate() takes the first of equally near hits). */
 	int k = cls * sc->ng + B->gpos, i = sc->nfl++;
