@@ -76,6 +76,8 @@ _Static_assert(GRID * GRID <= 64 && GRID <= 16, "GRID too large for fates_hit()"
  * ray from it may meet, found among the first FRONT_SCAN whose boxes reach
  * its front, keeps them, and its rays try those alone (front_list()). */
 #define FRONT_MAX 16
+/* cast_closed()'s answers a polygon keeps: two bits a run. */
+#define CLOSED_KEPT 32
 #define FRONT_SCAN 64
 /* ... a polygon wholly in front of it. */
 #define FRONT (1 << 29)
@@ -141,6 +143,8 @@ typedef struct cpoly {
 	                          list order, or nfl -1: too many, each ray
 	                          goes through the tree (front_list()) */
 	int orun;              /* its object's run in sc->oby (cast_fate()) */
+	uint64_t closed;       /* cast_closed() for runs r < CLOSED_KEPT: bit
+	                          2 r known, bit 2 r + 1 closed */
 } cpoly;
 
 /* The cube's polygons in groups: a sheet (see SHEET_COS), or one polygon.
@@ -266,13 +270,9 @@ struct pm_comp_scratch {
 	int *oby;              /* the polygons by object, and where each */
 	int *orun0;            /* object's run starts (nrun + 1 entries) */
 	int nrun, obycap, orun0cap;
-	int *oclst, *oclv;     /* per run: closed for the polygon asking
-	                          (cast_closed()) if oclst is cstamp */
-	int oclstcap, oclcap, cstamp;
 	int *fl, *flk;         /* front_list()'s lists, and each entry's place
 	                          in list order */
 	int flcap, flkcap, nfl;
-	int ccur;              /* the polygon the closures in oclv are for */
 	int pyr_of;            /* the polygon whose pyramid sc->pyr holds, or -1 */
 	const unsigned char *cvx;
 	int oom;
@@ -360,8 +360,6 @@ pm_comp_scratch_free(pm_comp_scratch *sc)
 	free(sc->flk);
 	free(sc->oby);
 	free(sc->orun0);
-	free(sc->oclst);
-	free(sc->oclv);
 	free(sc);
 }
 
@@ -1438,16 +1436,11 @@ cmp_u64(const void *a, const void *b)
 static int
 cast_prepare(pm_comp_scratch *sc)
 {
-	int ng = sc->ng, old = sc->oclstcap;
+	int ng = sc->ng;
 
-	if (!pm_grow((void **)&sc->oclst, &sc->oclstcap, 0, ng, sizeof *sc->oclst))
-		return 0;
-	for (int i = old; i < sc->oclstcap; i++)
-		sc->oclst[i] = 0;
 	if (!pm_grow((void **)&sc->okey, &sc->okeycap, 0, ng, sizeof *sc->okey) ||
 	    !pm_grow((void **)&sc->oby, &sc->obycap, 0, ng, sizeof *sc->oby) ||
-	    !pm_grow((void **)&sc->orun0, &sc->orun0cap, 0, ng + 1, sizeof *sc->orun0) ||
-	    !pm_grow((void **)&sc->oclv, &sc->oclcap, 0, ng, sizeof *sc->oclv))
+	    !pm_grow((void **)&sc->orun0, &sc->orun0cap, 0, ng + 1, sizeof *sc->orun0))
 		return 0;
 	for (int i = 0; i < ng; i++) {
 		sc->g[sc->gp[i]].gpos = i;
@@ -1463,30 +1456,23 @@ cast_prepare(pm_comp_scratch *sc)
 		sc->g[b].orun = sc->nrun - 1;
 	}
 	sc->orun0[sc->nrun] = ng;
-	sc->ccur = -1;
 	return 1;
 }
 
 /* 1 if P's list would close B's solid (run r): some polygon of it, not P
  * nor of P's sheet sgrp, no layer over P, has part in front of P and P
  * lies partly behind its plane (pair_lists()'s MATTER entries, which
- * close_matter() closes). Worked out once per P and solid. */
+ * close_matter() closes). Kept in P for its first CLOSED_KEPT solids (the
+ * photons' loop asks P after P), worked out again for the others (a cube
+ * of so many objects holds few polygons of each). */
 static int
 cast_closed(pm_comp_scratch *sc, const cpoly *P, int r, int sgrp, double eps)
 {
-	int a = (int)(P - sc->g), v = 0;
+	cpoly *W = &sc->g[P - sc->g];
+	int v = 0, kept = r < CLOSED_KEPT;
 
-	if (sc->ccur != a) {
-		sc->ccur = a;
-		if (sc->cstamp == INT_MAX) {
-			for (int i = 0; i < sc->oclstcap; i++)
-				sc->oclst[i] = 0;
-			sc->cstamp = 0;
-		}
-		sc->cstamp++;
-	}
-	if (sc->oclst[r] == sc->cstamp)
-		return sc->oclv[r];
+	if (kept && (W->closed >> 2 * r & 1))
+		return (int)(W->closed >> (2 * r + 1) & 1);
 	for (int i = sc->orun0[r]; i < sc->orun0[r + 1] && !v; i++) {
 		const cpoly *C = &sc->g[sc->oby[i]];
 		double lo, hi, plo, phi;
@@ -1498,8 +1484,8 @@ cast_closed(pm_comp_scratch *sc, const cpoly *P, int r, int sgrp, double eps)
 		span(sc, P, C->N, C->d, &plo, &phi);
 		v = plo < -eps;
 	}
-	sc->oclst[r] = sc->cstamp;
-	sc->oclv[r] = v;
+	if (kept)
+		W->closed |= (uint64_t)(1 | v << 1) << 2 * r;
 	return v;
 }
 

@@ -36,6 +36,26 @@ u01(pm_rng *r)
 	return (pm_rng_u32(r) + 0.5) / 4294967296.0;
 }
 
+/* n boxes in [-1, 1]^3, half-widths up to wmax; with flat, a fifth of
+ * the widths 0 (a polygon in an axis plane). */
+static void
+random_boxes(pm_rng *r, int n, double wmax, int flat, double lo[][3], double hi[][3])
+{
+	for (int i = 0; i < n; i++)
+		for (int k = 0; k < 3; k++) {
+			double c = 2 * u01(r) - 1, w = flat && u01(r) < 0.2 ? 0 : wmax * u01(r);
+			lo[i][k] = c - w;
+			hi[i][k] = c + w;
+		}
+}
+
+static pm_dvec3
+random_point(pm_rng *r)
+{
+	double x = 2 * u01(r) - 1, y = 2 * u01(r) - 1;
+	return pm_dv3(x, y, 2 * u01(r) - 1);
+}
+
 /* 1 if a + t (b - a) lies in box i grown by g for one of STEPS + 1 even t. */
 static int
 walk_meets(pm_dvec3 a, pm_dvec3 b, const double lo[3], const double hi[3], double g)
@@ -60,17 +80,11 @@ TEST(segments_find_every_box_they_meet)
 	for (int round = 0; round < 40; round++) {
 		n = round == 0 ? 1 : 1 + (int)(u01(&r) * (MAXN - 1));
 		/* Flat and thin boxes too (a polygon in an axis plane). */
-		for (int i = 0; i < n; i++)
-			for (int k = 0; k < 3; k++) {
-				double c = 2 * u01(&r) - 1, w = u01(&r) < 0.2 ? 0 : 0.2 * u01(&r);
-				lo[i][k] = c - w;
-				hi[i][k] = c + w;
-			}
+		random_boxes(&r, n, 0.2, 1, lo, hi);
 		double g = round % 2 ? 0.01 : 0;
 		CHECK(pm_boxtree_build(&t, (const double (*)[3])lo, (const double (*)[3])hi, n, g));
 		for (int q = 0; q < 25; q++) {
-			pm_dvec3 a = pm_dv3(2 * u01(&r) - 1, 2 * u01(&r) - 1, 2 * u01(&r) - 1), b;
-			b = pm_dv3(2 * u01(&r) - 1, 2 * u01(&r) - 1, 2 * u01(&r) - 1);
+			pm_dvec3 a = random_point(&r), b = random_point(&r);
 			/* Along an axis, and a point, now and then. */
 			if (q % 5 == 1)
 				b = pm_dv3(a.x, a.y, b.z);
@@ -179,17 +193,11 @@ TEST(rays_find_the_nearest_box)
 
 	for (int round = 0; round < 40; round++) {
 		int n = 1 + (int)(u01(&r) * (MAXN - 1));
-		for (int i = 0; i < n; i++)
-			for (int k = 0; k < 3; k++) {
-				double c = 2 * u01(&r) - 1, w = u01(&r) < 0.2 ? 0 : 0.3 * u01(&r);
-				lo[i][k] = c - w;
-				hi[i][k] = c + w;
-			}
+		random_boxes(&r, n, 0.3, 1, lo, hi);
 		double g = round % 2 ? 0.01 : 0;
 		CHECK(pm_boxtree_build(&t, (const double (*)[3])lo, (const double (*)[3])hi, n, g));
 		for (int q = 0; q < 25; q++, rays++) {
-			pm_dvec3 a = pm_dv3(2 * u01(&r) - 1, 2 * u01(&r) - 1, 2 * u01(&r) - 1), b;
-			b = pm_dv3(2 * u01(&r) - 1, 2 * u01(&r) - 1, 2 * u01(&r) - 1);
+			pm_dvec3 a = random_point(&r), b = random_point(&r);
 			if (q % 5 == 1)
 				b = pm_dv3(a.x, a.y, b.z);
 			double smax = 1, truth = 2;
@@ -232,12 +240,7 @@ TEST(halfspace_finds_every_box_beyond)
 
 	for (int round = 0; round < 40; round++) {
 		int n = 1 + (int)(u01(&r) * (MAXN - 1));
-		for (int i = 0; i < n; i++)
-			for (int k = 0; k < 3; k++) {
-				double c = 2 * u01(&r) - 1, w = 0.1 * u01(&r);
-				lo[i][k] = c - w;
-				hi[i][k] = c + w;
-			}
+		random_boxes(&r, n, 0.1, 0, lo, hi);
 		CHECK(pm_boxtree_build(&t, (const double (*)[3])lo, (const double (*)[3])hi, n, 0));
 		for (int q = 0; q < 25; q++) {
 			pm_dvec3 N = pm_dv3(2 * u01(&r) - 1, 2 * u01(&r) - 1, 2 * u01(&r) - 1);
