@@ -123,38 +123,43 @@ pm_boxtree_build(pm_boxtree *t, const double (*lo)[3], const double (*hi)[3], in
 	return 1;
 }
 
-/* The part of the segment a + s d, s in [0, smax], in node box nd: its
- * entry s, or 2 if it misses. */
+/* A segment a + s d as the walks ask it: 1 / d along each axis (infinity
+ * where d is 0, either sign) and whether d is negative there, so that the
+ * box's near and far sides need no sorting. */
+typedef struct seg {
+	double a[3], inv[3];
+	int neg[3];
+} seg;
+
+static seg
+seg_of(pm_dvec3 a, pm_dvec3 b)
+{
+	seg q = {{a.x, a.y, a.z}, {0, 0, 0}, {0, 0, 0}};
+	double d[3] = {b.x - a.x, b.y - a.y, b.z - a.z};
+
+	for (int k = 0; k < 3; k++) {
+		q.inv[k] = d[k] != 0 ? 1 / d[k] : INFINITY;
+		q.neg[k] = d[k] < 0;
+	}
+	return q;
+}
+
+/* The part of segment q, s in [0, smax], in node box nd: its entry s, or 2
+ * if it misses. Where d is 0 along an axis, a outside the box's slab gives
+ * an infinity that misses, and a on its side a NaN, which the comparisons
+ * pass over (the closed box holds it). */
 static inline double
-entry(const pm_boxtree_node *nd, const double a[3], const double d[3], const double inv[3], double smax)
+entry(const pm_boxtree_node *nd, const seg *q, double smax)
 {
 	double s0 = 0, s1 = smax;
 
 	for (int k = 0; k < 3; k++) {
-		if (d[k] == 0) {
-			if (a[k] < nd->lo[k] || a[k] > nd->hi[k])
-				return 2;
-			continue;
-		}
-		double u = (nd->lo[k] - a[k]) * inv[k], v = (nd->hi[k] - a[k]) * inv[k];
-		if (u > v) {
-			double s = u;
-			u = v;
-			v = s;
-		}
+		double u = ((q->neg[k] ? nd->hi[k] : nd->lo[k]) - q->a[k]) * q->inv[k];
+		double v = ((q->neg[k] ? nd->lo[k] : nd->hi[k]) - q->a[k]) * q->inv[k];
 		s0 = u > s0 ? u : s0;
 		s1 = v < s1 ? v : s1;
-		if (s0 > s1)
-			return 2;
 	}
-	return s0;
-}
-
-/* 1 if the segment a + s d, s in [0, 1], meets node box nd. */
-static inline int
-hits(const pm_boxtree_node *nd, const double a[3], const double d[3], const double inv[3])
-{
-	return entry(nd, a, d, inv, 1) <= 1;
+	return s0 > s1 ? 2 : s0;
 }
 
 /* Depth first through the nodes keep() passes (q its question), f asked
@@ -185,24 +190,17 @@ walk(const pm_boxtree *t, int (*keep)(const pm_boxtree_node *nd, const void *q),
 	return 0;
 }
 
-typedef struct segq {
-	double a[3], d[3], inv[3];
-} segq;
-
 static inline int
-seg_keep(const pm_boxtree_node *nd, const void *vq)
+seg_keep(const pm_boxtree_node *nd, const void *q)
 {
-	const segq *q = vq;
-	return hits(nd, q->a, q->d, q->inv);
+	return entry(nd, q, 1) <= 1;
 }
 
 int
 pm_boxtree_segment(const pm_boxtree *t, pm_dvec3 a, pm_dvec3 b, int (*f)(void *ctx, int i), void *ctx)
 {
-	segq q = {{a.x, a.y, a.z}, {b.x - a.x, b.y - a.y, b.z - a.z}, {0, 0, 0}};
+	seg q = seg_of(a, b);
 
-	for (int k = 0; k < 3; k++)
-		q.inv[k] = q.d[k] != 0 ? 1 / q.d[k] : 0;
 	return walk(t, seg_keep, &q, f, ctx);
 }
 
@@ -210,14 +208,13 @@ void
 pm_boxtree_ray(const pm_boxtree *t, pm_dvec3 a, pm_dvec3 b, double *smax, void (*f)(void *ctx, int i),
                void *ctx)
 {
-	double pa[3] = {a.x, a.y, a.z}, d[3] = {b.x - a.x, b.y - a.y, b.z - a.z}, inv[3], at[STACK];
+	seg q = seg_of(a, b);
+	double at[STACK];
 	int stack[STACK], sp = 0;
 
 	if (t->nnode == 0)
 		return;
-	for (int k = 0; k < 3; k++)
-		inv[k] = d[k] != 0 ? 1 / d[k] : 0;
-	if ((at[0] = entry(&t->node[0], pa, d, inv, *smax)) > 1)
+	if ((at[0] = entry(&t->node[0], &q, *smax)) > 1)
 		return;
 	stack[sp++] = 0;
 	while (sp > 0) {
@@ -231,8 +228,8 @@ pm_boxtree_ray(const pm_boxtree *t, pm_dvec3 a, pm_dvec3 b, double *smax, void (
 			continue;
 		}
 		/* The nearer child on top; a child the segment misses, not at all. */
-		double e0 = entry(&t->node[nd->first], pa, d, inv, *smax);
-		double e1 = entry(&t->node[nd->first + 1], pa, d, inv, *smax);
+		double e0 = entry(&t->node[nd->first], &q, *smax);
+		double e1 = entry(&t->node[nd->first + 1], &q, *smax);
 		int c0 = nd->first, c1 = nd->first + 1;
 		if (e1 > e0) {
 			double e = e0;

@@ -85,6 +85,13 @@ _Static_assert(GRID * GRID <= 64 && GRID <= 16, "GRID too large for fates_hit()"
  * from x' come from a grid of where x' sees them (sight.h); below, from
  * every pair. Both apply the same test. */
 #define SIGHT_MIN 32
+/* From this many, a polygon x' sees across an edge of the cube of
+ * directions gets a box on each face it reaches (pm_sight_box's across)
+ * rather than every direction, which put it on every query's list and
+ * every pair with it past the grid: a quarter of the polygons of
+ * meshroom's cubes of 256 or more. Clipping it to the faces costs more
+ * than that saves in smaller cubes (prims, cove: +1-2 % from 32 on). */
+#define SIGHT_ACROSS 128
 /* Up to this many groups in the cube (a smooth mesh is a few sheets), each
  * is asked once per polygon whether it can hide any of it; the grid is
  * queried only when those that can hold SIGHT_MIN polygons or more. A
@@ -2268,7 +2275,7 @@ weights(const pm_polyindex *pi, pm_vec3 x, pm_vec3 n,
 		P->convex = pm_poly_convex(sc->cv + P->v0, P->nv, P->N);
 		/* 2 eps: a crossing within eps of B counts (seen()), and a
 		 * photon lies within eps of its polygon. */
-		pm_sight_box(sc->cv + P->v0, P->nv, xo, 2 * eps, &sc->sg[a]);
+		pm_sight_box(sc->cv + P->v0, P->nv, xo, 2 * eps, sc->ng >= SIGHT_ACROSS, &sc->sg[a]);
 		for (int j = 0; j < na && !P->lit; j++)
 			P->lit = facing(P, sc->psi[j], sc->c[j], nd) > 0;
 	}

@@ -16,18 +16,26 @@
 /* Cells per side of one face of the grid. */
 #define PM_SIGHT_CELLS 16
 
-/* A polygon's directions from the eye: on face `face` (2 axis + 1 if the
- * axis points away), the box [lo, hi] of the two other coordinates over
- * the axis coordinate, widened so that it holds every point within e of
- * the polygon. face -1: the polygon reaches another face, or comes within
- * 2 e of the eye: it may meet any direction. */
+/* A polygon's directions from the eye: for each face f of the cube of
+ * directions it reaches (bit f of mask; f = 2 axis + 1 if the axis points
+ * away), the box [lo[f], hi[f]] of the two other coordinates over the axis
+ * coordinate, widened so that it holds every point within e of the
+ * polygon whose direction lies on that face (a polygon across an edge of
+ * the cube has a box on each face it reaches). face: the first of them,
+ * or -1: the polygon comes within a few e of the eye, or has too many
+ * vertices to clip, or reaches across an edge of the cube where that was
+ * not asked for: it may meet any direction. */
 typedef struct pm_sight {
 	int face;
-	double lo[2], hi[2];
+	unsigned mask;
+	double lo[6][2], hi[6][2];
 } pm_sight;
 
-/* The box of polygon v[0..n-1] (any shape, n >= 1) seen from eye. */
-void pm_sight_box(const pm_dvec3 *v, int n, pm_dvec3 eye, double e, pm_sight *out);
+/* The box of polygon v[0..n-1] (flat, any shape, n >= 1) seen from eye;
+ * with across 0, only where it lies on one face (a box across faces costs
+ * clipping the polygon to each, which pays only where a grid of many
+ * boxes is queried). */
+void pm_sight_box(const pm_dvec3 *v, int n, pm_dvec3 eye, double e, int across, pm_sight *out);
 
 /* 1 if some direction may be in both boxes. */
 static inline int
@@ -35,8 +43,13 @@ pm_sight_meet(const pm_sight *a, const pm_sight *b)
 {
 	if (a->face < 0 || b->face < 0)
 		return 1;
-	return a->face == b->face && a->lo[0] <= b->hi[0] && b->lo[0] <= a->hi[0] &&
-	       a->lo[1] <= b->hi[1] && b->lo[1] <= a->hi[1];
+	for (unsigned m = a->mask & b->mask; m; m &= m - 1) {
+		int f = __builtin_ctz(m);
+		if (a->lo[f][0] <= b->hi[f][0] && b->lo[f][0] <= a->hi[f][0] && a->lo[f][1] <= b->hi[f][1] &&
+		    b->lo[f][1] <= a->hi[f][1])
+			return 1;
+	}
+	return 0;
 }
 
 /* The boxes of n polygons in cells; polygons with face -1 or a box over
