@@ -76,11 +76,11 @@ _Static_assert(GRID * GRID <= 64 && GRID <= 16, "GRID too large for fates_hit()"
  * ray from it may meet, found among the first FRONT_SCAN whose boxes reach
  * its front, keeps them, and its rays try those alone (front_list()). */
 #define FRONT_MAX 16
-/* cast_closed()'s answers a polygon keeps: two bits a run. */
-#define CLOSED_KEPT 32
 #define FRONT_SCAN 64
 /* ... a polygon wholly in front of it. */
 #define FRONT (1 << 29)
+/* cast_closed()'s answers a polygon keeps: two bits a run. */
+#define CLOSED_KEPT 32
 /* From this many polygons in the cube, the candidates that may hide one
  * from x' come from a grid of where x' sees them (sight.h); below, from
  * every pair. Both apply the same test. */
