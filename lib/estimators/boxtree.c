@@ -74,6 +74,7 @@ build(pm_boxtree *t, const double (*lo)[3], const double (*hi)[3], double grow, 
 		}
 		nd->first = first;
 		nd->count = count;
+		nd->tag = -1;
 		return;
 	}
 	for (int k = 0; k < 3; k++) {
@@ -101,6 +102,7 @@ build(pm_boxtree *t, const double (*lo)[3], const double (*hi)[3], double grow, 
 	}
 	nd->first = c;
 	nd->count = 0;
+	nd->tag = -1;
 }
 
 int
@@ -123,39 +125,61 @@ pm_boxtree_build(pm_boxtree *t, const double (*lo)[3], const double (*hi)[3], in
 	return 1;
 }
 
-/* A segment a + s d as the walks ask it: 1 / d along each axis (infinity
- * where d is 0, either sign) and whether d is negative there, so that the
- * box's near and far sides need no sorting. */
+void
+pm_boxtree_tag(pm_boxtree *t, const int *tag)
+{
+	/* Children come after their parent. */
+	for (int v = t->nnode - 1; v >= 0; v--) {
+		pm_boxtree_node *nd = &t->node[v];
+		if (nd->count > 0) {
+			nd->tag = tag[t->item[nd->first]];
+			for (int i = nd->first + 1; i < nd->first + nd->count; i++)
+				nd->tag = tag[t->item[i]] == nd->tag ? nd->tag : -1;
+		} else
+			nd->tag = t->node[nd->first].tag == t->node[nd->first + 1].tag ? t->node[nd->first].tag : -1;
+	}
+}
+
+/* Segments a + s d (s in [0, 1]) as the walks ask them: 1 / d along each
+ * axis (infinity where d is 0, either sign) and whether d is negative
+ * there, so that the box's near and far sides need no sorting, and the
+ * origins' extreme along each axis that makes the entry earliest (near)
+ * and the exit latest (far). For one segment both are its a; for a beam
+ * of parallel ones, from a box of origins, the entry is then no later and
+ * the exit no earlier than any one's, in floating point too (rounding is
+ * monotone). */
 typedef struct seg {
-	double a[3], inv[3];
+	double near[3], far[3], inv[3];
 	int neg[3];
 } seg;
 
 static seg
-seg_of(pm_dvec3 a, pm_dvec3 b)
+seg_of(pm_dvec3 lo, pm_dvec3 hi, pm_dvec3 d)
 {
-	seg q = {{a.x, a.y, a.z}, {0, 0, 0}, {0, 0, 0}};
-	double d[3] = {b.x - a.x, b.y - a.y, b.z - a.z};
+	seg q;
+	double l[3] = {lo.x, lo.y, lo.z}, h[3] = {hi.x, hi.y, hi.z}, dv[3] = {d.x, d.y, d.z};
 
 	for (int k = 0; k < 3; k++) {
-		q.inv[k] = d[k] != 0 ? 1 / d[k] : INFINITY;
-		q.neg[k] = d[k] < 0;
+		q.inv[k] = dv[k] != 0 ? 1 / dv[k] : INFINITY;
+		q.neg[k] = dv[k] < 0;
+		q.near[k] = q.neg[k] ? l[k] : h[k];
+		q.far[k] = q.neg[k] ? h[k] : l[k];
 	}
 	return q;
 }
 
 /* The part of segment q, s in [0, smax], in node box nd: its entry s, or 2
- * if it misses. Where d is 0 along an axis, a outside the box's slab gives
- * an infinity that misses, and a on its side a NaN, which the comparisons
- * pass over (the closed box holds it). */
+ * if it misses. Where d is 0 along an axis, origins outside the box's slab
+ * give an infinity that misses, and one on its side a NaN, which the
+ * comparisons pass over (the closed box holds it). */
 static inline double
 entry(const pm_boxtree_node *nd, const seg *q, double smax)
 {
 	double s0 = 0, s1 = smax;
 
 	for (int k = 0; k < 3; k++) {
-		double u = ((q->neg[k] ? nd->hi[k] : nd->lo[k]) - q->a[k]) * q->inv[k];
-		double v = ((q->neg[k] ? nd->lo[k] : nd->hi[k]) - q->a[k]) * q->inv[k];
+		double u = ((q->neg[k] ? nd->hi[k] : nd->lo[k]) - q->near[k]) * q->inv[k];
+		double v = ((q->neg[k] ? nd->lo[k] : nd->hi[k]) - q->far[k]) * q->inv[k];
 		s0 = u > s0 ? u : s0;
 		s1 = v < s1 ? v : s1;
 	}
@@ -199,16 +223,16 @@ seg_keep(const pm_boxtree_node *nd, const void *q)
 int
 pm_boxtree_segment(const pm_boxtree *t, pm_dvec3 a, pm_dvec3 b, int (*f)(void *ctx, int i), void *ctx)
 {
-	seg q = seg_of(a, b);
+	seg q = seg_of(a, a, pm_dsub(b, a));
 
 	return walk(t, seg_keep, &q, f, ctx);
 }
 
 void
-pm_boxtree_ray(const pm_boxtree *t, pm_dvec3 a, pm_dvec3 b, double *smax, void (*f)(void *ctx, int i),
-               void *ctx)
+pm_boxtree_beam(const pm_boxtree *t, pm_dvec3 lo, pm_dvec3 hi, pm_dvec3 d, int skip, double *smax,
+                void (*f)(void *ctx, int i), void *ctx)
 {
-	seg q = seg_of(a, b);
+	seg q = seg_of(lo, hi, d);
 	double at[STACK];
 	int stack[STACK], sp = 0;
 
@@ -222,6 +246,8 @@ pm_boxtree_ray(const pm_boxtree *t, pm_dvec3 a, pm_dvec3 b, double *smax, void (
 		if (at[sp] > *smax)
 			continue;
 		const pm_boxtree_node *nd = &t->node[stack[sp]];
+		if (nd->tag >= 0 && nd->tag == skip)
+			continue;
 		if (nd->count > 0) {
 			for (int i = nd->first; i < nd->first + nd->count; i++)
 				f(ctx, t->item[i]);
@@ -252,6 +278,7 @@ pm_boxtree_ray(const pm_boxtree *t, pm_dvec3 a, pm_dvec3 b, double *smax, void (
 typedef struct halfq {
 	pm_dvec3 N;
 	double d;
+	int skip;
 } halfq;
 
 static inline int
@@ -259,14 +286,17 @@ half_keep(const pm_boxtree_node *nd, const void *vq)
 {
 	const halfq *q = vq;
 	pm_dvec3 N = q->N;
+	if (nd->tag >= 0 && nd->tag == q->skip)
+		return 0;
 	return (N.x > 0 ? nd->hi[0] : nd->lo[0]) * N.x + (N.y > 0 ? nd->hi[1] : nd->lo[1]) * N.y +
 	       (N.z > 0 ? nd->hi[2] : nd->lo[2]) * N.z > q->d;
 }
 
 int
-pm_boxtree_halfspace(const pm_boxtree *t, pm_dvec3 N, double d, int (*f)(void *ctx, int i), void *ctx)
+pm_boxtree_halfspace(const pm_boxtree *t, pm_dvec3 N, double d, int skip, int (*f)(void *ctx, int i),
+                     void *ctx)
 {
-	halfq q = {N, d};
+	halfq q = {N, d, skip};
 	return walk(t, half_keep, &q, f, ctx);
 }
 

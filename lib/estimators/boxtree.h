@@ -20,6 +20,8 @@ typedef struct pm_boxtree_node {
 	double lo[3], hi[3];
 	int first, count;      /* a leaf: items [first, first + count); an inner
 	                          node: count 0, children first and first + 1 */
+	int tag;               /* the tag every item below has, or -1
+	                          (pm_boxtree_tag()) */
 } pm_boxtree_node;
 
 typedef struct pm_boxtree {
@@ -36,22 +38,33 @@ typedef struct pm_boxtree {
  * tree's shape depends only on the boxes. 0 on a failed allocation. */
 int pm_boxtree_build(pm_boxtree *t, const double (*lo)[3], const double (*hi)[3], int n, double grow);
 
+/* Tags the tree's boxes, tag[i] >= 0 for box i, so that the walks below
+ * can pass over every node whose boxes all have the tag they are told to
+ * skip (a building tags none). */
+void pm_boxtree_tag(pm_boxtree *t, const int *tag);
+
 /* Calls f(ctx, i) for every box i the segment a-b may pass through (every
  * one it does, perhaps some more), until f returns nonzero; returns that
  * value, or 0. */
 int pm_boxtree_segment(const pm_boxtree *t, pm_dvec3 a, pm_dvec3 b, int (*f)(void *ctx, int i), void *ctx);
 
-/* Calls f(ctx, i) for every box i the segment a-b may pass through no
- * further than *smax of the way (0 <= *smax <= 1), nearer boxes first as
- * far as the tree tells; f may lower *smax (a hit found), and boxes the
- * segment enters beyond it are passed over from then on. */
-void pm_boxtree_ray(const pm_boxtree *t, pm_dvec3 a, pm_dvec3 b, double *smax, void (*f)(void *ctx, int i),
-                    void *ctx);
+/* Calls f(ctx, i) for every box i that one of the parallel segments from a
+ * to a + d, a any origin in the box lo-hi, may pass through no further
+ * than *smax of the way (0 <= *smax <= 1; every box some such segment
+ * enters, perhaps some more), nearer boxes first as far as the tree tells;
+ * f may lower *smax (the furthest any segment still needs: hits found),
+ * and boxes entered beyond it are passed over from then on. One walk for
+ * rays from points near each other: a box is tested once, not once a ray;
+ * for one ray, lo and hi are its origin. Boxes tagged skip (if skip >= 0)
+ * may be left out. */
+void pm_boxtree_beam(const pm_boxtree *t, pm_dvec3 lo, pm_dvec3 hi, pm_dvec3 d, int skip, double *smax,
+                     void (*f)(void *ctx, int i), void *ctx);
 
 /* Calls f(ctx, i) for every box i with some point p where N . p > d (the
- * box as grown; perhaps some more), until f returns nonzero; returns that
- * value, or 0. */
-int pm_boxtree_halfspace(const pm_boxtree *t, pm_dvec3 N, double d, int (*f)(void *ctx, int i), void *ctx);
+ * box as grown; perhaps some more; boxes tagged skip, if skip >= 0, may be
+ * left out), until f returns nonzero; returns that value, or 0. */
+int pm_boxtree_halfspace(const pm_boxtree *t, pm_dvec3 N, double d, int skip, int (*f)(void *ctx, int i),
+                         void *ctx);
 
 void pm_boxtree_free(pm_boxtree *t);
 

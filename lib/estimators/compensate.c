@@ -270,6 +270,9 @@ struct pm_comp_scratch {
 	pm_boxtree tree;       /* the polygons' boxes, for seen_cast() ... */
 	double (*bb)[3];       /* ... their boxes' lo, then hi */
 	int bcap;
+	int *btag;             /* ... tagged with their groups, which the
+	                          walks from a polygon of a sheet pass over */
+	int btagcap;
 	int tree_built;        /* ... made once an estimate, when first asked */
 	int fcast;             /* fates by rays in this cube (FATE_CAST_GROUPS) */
 	uint64_t *okey;        /* object and polygon, while runs are made */
@@ -277,6 +280,8 @@ struct pm_comp_scratch {
 	int *oby;              /* the polygons by object, and where each */
 	int *orun0;            /* object's run starts (nrun + 1 entries) */
 	int nrun, obycap, orun0cap;
+	pm_dvec3 *onrm;        /* their normals in that order */
+	int onrmcap;
 	int *fl, *flk;         /* front_list()'s lists, and each entry's place
 	                          in list order */
 	int flcap, flkcap, nfl;
@@ -362,10 +367,12 @@ pm_comp_scratch_free(pm_comp_scratch *sc)
 	free(sc->sg);
 	pm_boxtree_free(&sc->tree);
 	free(sc->bb);
+	free(sc->btag);
 	free(sc->okey);
 	free(sc->fl);
 	free(sc->flk);
 	free(sc->oby);
+	free(sc->onrm);
 	free(sc->orun0);
 	free(sc);
 }
@@ -1387,8 +1394,12 @@ cube_tree(pm_comp_scratch *sc, double eps)
 			sc->bb[ng + b][k] = sc->g[b].hi[k];
 		}
 	if (!pm_boxtree_build(&sc->tree, (const double (*)[3])sc->bb, (const double (*)[3])sc->bb + ng, ng,
-	                      2 * eps))
+	                      2 * eps) ||
+	    !pm_grow((void **)&sc->btag, &sc->btagcap, 0, ng, sizeof *sc->btag))
 		return 0;
+	for (int b = 0; b < ng; b++)
+		sc->btag[b] = sc->g[b].grp;
+	pm_boxtree_tag(&sc->tree, sc->btag);
 	sc->tree_built = 1;
 	return 1;
 }
@@ -1447,7 +1458,8 @@ cast_prepare(pm_comp_scratch *sc)
 
 	if (!pm_grow((void **)&sc->okey, &sc->okeycap, 0, ng, sizeof *sc->okey) ||
 	    !pm_grow((void **)&sc->oby, &sc->obycap, 0, ng, sizeof *sc->oby) ||
-	    !pm_grow((void **)&sc->orun0, &sc->orun0cap, 0, ng + 1, sizeof *sc->orun0))
+	    !pm_grow((void **)&sc->orun0, &sc->orun0cap, 0, ng + 1, sizeof *sc->orun0) ||
+	    !pm_grow((void **)&sc->onrm, &sc->onrmcap, 0, ng, sizeof *sc->onrm))
 		return 0;
 	for (int i = 0; i < ng; i++) {
 		sc->g[sc->gp[i]].gpos = i;
@@ -1460,6 +1472,7 @@ cast_prepare(pm_comp_scratch *sc)
 		if (i == 0 || sc->g[b].obj != sc->g[sc->oby[i - 1]].obj)
 			sc->orun0[sc->nrun++] = i;
 		sc->oby[i] = b;
+		sc->onrm[i] = sc->g[b].N;
 		sc->g[b].orun = sc->nrun - 1;
 	}
 	sc->orun0[sc->nrun] = ng;
@@ -1481,9 +1494,15 @@ cast_closed(pm_comp_scratch *sc, const cpoly *P, int r, int sgrp, double eps)
 	if (kept && (W->closed >> 2 * r & 1))
 		return (int)(W->closed >> (2 * r + 1) & 1);
 	for (int i = sc->orun0[r]; i < sc->orun0[r + 1] && !v; i++) {
-		const cpoly *C = &sc->g[sc->oby[i]];
+		const cpoly *C;
 		double lo, hi, plo, phi;
-		if (C == P || C->grp == sgrp || !C->solid || fabs(pm_ddot(C->N, P->N)) >= LAYER_COS)
+		/* Most of a solid's polygons in the cube are layers over P (its
+		 * own mesh, curving gently): told from the normals alone, kept
+		 * together, before the polygon is looked at. */
+		if (fabs(pm_ddot(sc->onrm[i], P->N)) >= LAYER_COS)
+			continue;
+		C = &sc->g[sc->oby[i]];
+		if (C == P || C->grp == sgrp || !C->solid)
 			continue;
 		span(sc, C, P->Ne, P->de, &lo, &hi);
 		if (!(hi > eps))
@@ -1538,19 +1557,30 @@ cast_class(pm_comp_scratch *sc, const cpoly *P, const cpoly *B, int sgrp, double
 	return cast_class_at(sc, P, B, lo, hi, sgrp, eps, matter);
 }
 
+/* Rays cast_fates() follows in one beam: at most four of a fate-cast
+ * polygon's dynamic sample points, a row of its grid (at most 4 x 4,
+ * sample()) or all of a 2 x 2 one. Beams of 8 or 16 met more polygons than
+ * the walks they saved (scanned, meshroom); beams of 2 saved too few walks. */
+#define BEAM_MAX 4
+
 typedef struct fate_ctx {
 	pm_comp_scratch *sc;
 	const cpoly *P;
-	pm_dvec3 y, psi;
-	double eps, best, len, smax;
-	int sgrp, covers, key, f;
+	const pm_dvec3 *y;
+	pm_dvec3 psi;
+	double eps, len, smax;
+	int n, sgrp, covers;
+	double best[BEAM_MAX];
+	int key[BEAM_MAX], f[BEAM_MAX];
 } fate_ctx;
 
-/* pm_boxtree_ray's question for polygon b along a backward ray: if fate()
- * over P's list would take b's entry before the best so far (a nearer hit,
- * or as near and earlier on the list), it becomes the best, and boxes
- * entered beyond it (by more than eps: a hit lies within eps of its
- * polygon, whose box the tree grew by 2 eps) need not be asked. */
+/* pm_boxtree_beam's question for polygon b along the backward rays: for
+ * each ray, if fate() over P's list would take b's entry before the best
+ * so far (a nearer hit, or as near and earlier on the list), it becomes
+ * that ray's best. Boxes entered beyond every ray's best (by more than
+ * eps: a hit lies within eps of its polygon, whose box the tree grew by
+ * 2 eps) need not be asked. What the list would hold of b is worked out
+ * once, when some ray meets it. */
 static void
 fate_visit(void *vq, int b)
 {
@@ -1558,44 +1588,98 @@ fate_visit(void *vq, int b)
 	pm_comp_scratch *sc = q->sc;
 	const cpoly *B = &sc->g[b], *P = q->P;
 	double d = pm_ddot(B->N, q->psi), t;
-	int matter, cls, key;
+	int matter, cls = -2, key = 0, fb = 0, low = 0;
 
-	/* As near as the best counts too (the earlier entry wins): meets()
-	 * asked for hits short of a hair past it, the test below sorts them. */
-	if (B == P || B->grp == q->sgrp || fabs(d) < 1e-9 ||
-	    !meets(sc, B, d, q->y, q->psi, q->eps, q->best + 1e-12 * q->best + DBL_MIN, &t))
+	if (B == P || B->grp == q->sgrp || fabs(d) < 1e-9)
 		return;
-	cls = cast_class(sc, P, B, q->sgrp, q->eps, &matter);
-	if (cls < 0 || (cls == 0 && !q->covers))
-		return;
-	/* List order: covers, then the rest of the walk, then what closing
-	 * solids adds, each in the order of sc->gp. */
-	key = cls * sc->ng + B->gpos;
-	if (t < q->best || (t == q->best && key < q->key)) {
-		q->best = t;
-		q->key = key;
-		q->f = fate_at(matter ? MATTER : 0, B, d);
-		q->smax = dmin(1, (t + q->eps) / q->len);
+	for (int i = 0; i < q->n; i++) {
+		/* As near as the best counts too (the earlier entry wins):
+		 * meets() asked for hits short of a hair past it, the test
+		 * below sorts them. */
+		double best = q->best[i];
+		if (!meets(sc, B, d, q->y[i], q->psi, q->eps, best + 1e-12 * best + DBL_MIN, &t))
+			continue;
+		if (cls == -2) {
+			cls = cast_class(sc, P, B, q->sgrp, q->eps, &matter);
+			if (cls < 0 || (cls == 0 && !q->covers))
+				return;
+			/* List order: covers, then the rest of the walk, then
+			 * what closing solids adds, each in the order of sc->gp. */
+			key = cls * sc->ng + B->gpos;
+			fb = fate_at(matter ? MATTER : 0, B, d);
+		}
+		if (t < best || (t == best && key < q->key[i])) {
+			q->best[i] = t;
+			q->key[i] = key;
+			q->f[i] = fb;
+			low = 1;
+		}
+	}
+	if (low) {
+		double smax = 0;
+		for (int i = 0; i < q->n; i++)
+			smax = dmax(smax, dmin(1, (q->best[i] + q->eps) / q->len));
+		q->smax = smax;
 	}
 }
 
-/* fate() of the backward ray from y on P along psi over the list P would
- * have (pair_lists()), by the polygons whose boxes it passes through:
- * covers on P's plane taken as any other entry (covers 1, a photon's own
- * ray) or left out (covers 0: a sample point, which cast_cover() asked
- * first). sc->oom set if there is no room. */
+/* fate() of the backward rays from y[0 .. n) on P along psi (n <=
+ * BEAM_MAX) over the list P would have (pair_lists()), into f[], by the
+ * polygons whose boxes they pass through, in one walk of the tree: covers
+ * on P's plane taken as any other entry (covers 1, a photon's own ray) or
+ * left out (covers 0: sample points, which cast_cover() asked first). 0 if
+ * there is no room (sc->oom set). */
 static int
-cast_fate(pm_comp_scratch *sc, const cpoly *P, pm_dvec3 y, pm_dvec3 psi, double h, double eps, int covers)
+cast_fates(pm_comp_scratch *sc, const cpoly *P, const pm_dvec3 *y, int n, pm_dvec3 psi, double h, double eps,
+           int covers, int *f)
 {
 	/* Every polygon lies in the cube, within 2 sqrt(3) h of y. */
-	fate_ctx q = {sc, P, y, psi, eps, INFINITY, 4 * h, 1, sc->gr[P->grp].sheet ? P->grp : -1, covers, INT_MAX, -1};
+	fate_ctx q = {sc, P, y, psi, eps, 4 * h, 1, n, sc->gr[P->grp].sheet ? P->grp : -1, covers, {0}, {0}, {0}};
+	pm_dvec3 lo = y[0], hi = y[0];
 
 	if (!cube_tree(sc, eps)) {
 		sc->oom = 1;
-		return -1;
+		return 0;
 	}
-	pm_boxtree_ray(&sc->tree, y, pm_dadd(y, pm_dscale(psi, q.len)), &q.smax, fate_visit, &q);
-	return q.f;
+	for (int i = 0; i < n; i++) {
+		q.best[i] = INFINITY;
+		q.key[i] = INT_MAX;
+		q.f[i] = -1;
+		lo = pm_dv3(dmin(lo.x, y[i].x), dmin(lo.y, y[i].y), dmin(lo.z, y[i].z));
+		hi = pm_dv3(dmax(hi.x, y[i].x), dmax(hi.y, y[i].y), dmax(hi.z, y[i].z));
+	}
+	pm_boxtree_beam(&sc->tree, lo, hi, pm_dscale(psi, q.len), q.sgrp, &q.smax, fate_visit, &q);
+	for (int i = 0; i < n; i++)
+		f[i] = q.f[i];
+	return 1;
+}
+
+/* cast_fates() of one ray: its fate, or -1 (sc->oom set) if there is no
+ * room. */
+static int
+cast_fate(pm_comp_scratch *sc, const cpoly *P, pm_dvec3 y, pm_dvec3 psi, double h, double eps, int covers)
+{
+	int f = -1;
+
+	cast_fates(sc, P, &y, 1, psi, h, eps, covers, &f);
+	return f;
+}
+
+/* front_hits() by rays through the tree, in beams, where P has no front
+ * list; sc->oom set if there is no room. */
+static int
+cast_hits(pm_comp_scratch *sc, const cpoly *P, pm_dvec3 psi, double h, double eps, int fx)
+{
+	int hit = 0, f[BEAM_MAX];
+
+	for (int t = P->s0; t < P->s0 + P->ndyn; t += BEAM_MAX) {
+		int n = P->s0 + P->ndyn - t < BEAM_MAX ? P->s0 + P->ndyn - t : BEAM_MAX;
+		if (!cast_fates(sc, P, sc->sp + t, n, psi, h, eps, 0, f))
+			return 0;
+		for (int i = 0; i < n; i++)
+			hit += f[i] == fx;
+	}
+	return hit;
 }
 
 typedef struct front_ctx {
@@ -1656,7 +1740,7 @@ front_list(pm_comp_scratch *sc, cpoly *P, double eps)
 		return 0;
 	P->fl0 = sc->nfl;
 	P->nfl = 0;
-	if (pm_boxtree_halfspace(&sc->tree, P->Ne, P->de - 8 * eps, front_visit, &q)) {
+	if (pm_boxtree_halfspace(&sc->tree, P->Ne, P->de - 8 * eps, q.sgrp, front_visit, &q)) {
 		sc->nfl = P->fl0;
 		P->nfl = -1;
 	}
@@ -2447,14 +2531,14 @@ weights(const pm_polyindex *pi, pm_vec3 x, pm_vec3 n,
 				if (!(f > 0) || P->unseen)
 					continue;
 				if (P->fcast) {
-					/* Each point's ray through the tree; the covered
-					 * points' fates were found once (sample()). */
+					/* The points' rays over P's front list, or through
+					 * the tree in beams; the covered points' fates were
+					 * found once (sample()). */
 					int hit = 0;
 					if (P->nfl >= 0)
 						hit = front_hits(sc, P, psi, eps, sc->fx[j]);
 					else
-						for (int t = P->s0; t < P->s0 + P->ndyn; t++)
-							hit += cast_fate(sc, P, sc->sp[t], psi, h, eps, 0) == sc->fx[j];
+						hit = cast_hits(sc, P, psi, h, eps, sc->fx[j]);
 					if (sc->oom)
 						goto out;
 					for (int t = P->s0 + P->ndyn; t < P->s0 + P->ns; t++)

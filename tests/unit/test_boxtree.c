@@ -3,8 +3,8 @@
  * some point of the segment lies in (found by walking the segment in fine
  * steps, grown as the tree grows it) must be reported, each box at most
  * once; a query stops where its callback says; a ray's search finds the
- * box it enters first; a half-space query reports every box beyond its
- * plane. */
+ * box it enters first, and so does each ray of a beam searched at once; a
+ * half-space query reports every box beyond its plane. */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -178,7 +178,7 @@ nearer(void *ctx, int i)
 	}
 }
 
-/* pm_boxtree_ray with a callback that lowers the bound as it goes: it must
+/* pm_boxtree_beam of one segment, with a callback that lowers the bound as it goes: it must
  * find the box the segment enters first (against every box tried), and ask
  * far fewer boxes than a full walk, among boxes crowded enough that a
  * segment meets many. */
@@ -202,7 +202,7 @@ TEST(rays_find_the_nearest_box)
 				b = pm_dv3(a.x, a.y, b.z);
 			double smax = 1, truth = 2;
 			nearest nq = {(const double (*)[3])lo, (const double (*)[3])hi, a, b, g, 2, &smax, 0};
-			pm_boxtree_ray(&t, a, b, &smax, nearer, &nq);
+			pm_boxtree_beam(&t, a, a, pm_dsub(b, a), -1, &smax, nearer, &nq);
 			for (int i = 0; i < n; i++)
 				truth = fmin(truth, entry_of(a, b, lo[i], hi[i], g));
 			wrong += nq.best != truth;
@@ -214,6 +214,125 @@ TEST(rays_find_the_nearest_box)
 	}
 	CHECKF(wrong == 0, "%d of %d rays missed the nearest box", wrong, rays);
 	CHECKF(2 * asked < walked, "asked %ld boxes, a full walk %ld", asked, walked);
+	pm_boxtree_free(&t);
+}
+
+#define BEAM 9
+
+typedef struct beam_q {
+	const double (*lo)[3], (*hi)[3];
+	const int *tag;
+	pm_dvec3 a[BEAM], d;
+	double g, best[BEAM], *smax;
+	int n, skip, full, calls, count[MAXN];
+} beam_q;
+
+/* Each ray of the beam keeps the box it enters first, of those not tagged
+ * skip; the bound is the furthest any ray still needs (or, with full, the
+ * whole way). */
+static void
+nearer_each(void *ctx, int i)
+{
+	beam_q *q = ctx;
+	double m = 0;
+
+	q->calls++;
+	q->count[i]++;
+	if (q->tag[i] == q->skip)
+		return;
+	for (int j = 0; j < q->n; j++) {
+		double e = entry_of(q->a[j], pm_dadd(q->a[j], q->d), q->lo[i], q->hi[i], q->g);
+		q->best[j] = fmin(q->best[j], e);
+		m = fmax(m, fmin(q->best[j], 1));
+	}
+	*q->smax = q->full ? 1 : m;
+}
+
+/* Tags: 0 for boxes centred at x < 0 (a region, as a sheet is), 1 or 2
+ * for the others (mixed). */
+static void
+tag_boxes(int n, const double lo[][3], const double hi[][3], int *tag)
+{
+	for (int i = 0; i < n; i++)
+		tag[i] = lo[i][0] + hi[i][0] < 0 ? 0 : 1 + i % 2;
+}
+
+/* pm_boxtree_beam: parallel segments from origins scattered in a small box
+ * (some along an axis, where the origins differ in the coordinates the
+ * direction lacks), in one walk, in half the rounds passing over boxes
+ * tagged 0 (and then walking the whole way). Each must find the box it
+ * enters first of those not passed over, no box may be asked twice, the
+ * walk must ask fewer boxes than the rays' own walks together, and most
+ * boxes tagged 0 that the segments enter must be passed over. */
+TEST(beams_find_each_rays_nearest_box)
+{
+	static double lo[MAXN][3], hi[MAXN][3];
+	static beam_q q;
+	static int tag[MAXN];
+	pm_boxtree t = {0};
+	pm_rng r = pm_rng_seed(8, 1);
+	int wrong = 0, twice = 0, rays = 0, skipped = 0, skippable = 0;
+	long asked = 0, alone = 0;
+
+	for (int round = 0; round < 40; round++) {
+		int n = 1 + (int)(u01(&r) * (MAXN - 1)), skip = round % 4 < 2 ? 0 : -1;
+		random_boxes(&r, n, 0.3, 1, lo, hi);
+		double g = round % 2 ? 0.01 : 0;
+		CHECK(pm_boxtree_build(&t, (const double (*)[3])lo, (const double (*)[3])hi, n, g));
+		tag_boxes(n, (const double (*)[3])lo, (const double (*)[3])hi, tag);
+		pm_boxtree_tag(&t, tag);
+		for (int k = 0; k < 25; k++) {
+			pm_dvec3 c = random_point(&r), b = random_point(&r), blo, bhi;
+			double w = 0.05 * u01(&r);
+			if (k % 5 == 1)
+				b = pm_dv3(c.x, c.y, b.z);
+			memset(&q, 0, sizeof q);
+			q.lo = (const double (*)[3])lo;
+			q.hi = (const double (*)[3])hi;
+			q.tag = tag;
+			q.skip = skip;
+			q.full = skip == 0;
+			q.d = pm_dsub(b, c);
+			q.g = g;
+			q.n = 1 + (int)(u01(&r) * BEAM);
+			blo = bhi = c;
+			for (int j = 0; j < q.n; j++) {
+				q.a[j] = pm_dadd(c, pm_dv3(w * (2 * u01(&r) - 1), w * (2 * u01(&r) - 1),
+				                          k % 5 == 1 ? 0 : w * (2 * u01(&r) - 1)));
+				q.best[j] = 2;
+				blo = pm_dv3(fmin(blo.x, q.a[j].x), fmin(blo.y, q.a[j].y), fmin(blo.z, q.a[j].z));
+				bhi = pm_dv3(fmax(bhi.x, q.a[j].x), fmax(bhi.y, q.a[j].y), fmax(bhi.z, q.a[j].z));
+			}
+			double smax = 1;
+			q.smax = &smax;
+			pm_boxtree_beam(&t, blo, bhi, q.d, skip, &smax, nearer_each, &q);
+			asked += q.calls;
+			for (int i = 0; i < n; i++) {
+				twice += q.count[i] > 1;
+				int enters = 0;
+				for (int j = 0; j < q.n && skip == 0 && tag[i] == 0; j++)
+					enters |= entry_of(q.a[j], pm_dadd(q.a[j], q.d), lo[i], hi[i], g) <= 1;
+				skippable += enters;
+				skipped += enters && q.count[i] == 0;
+			}
+			for (int j = 0; j < q.n; j++, rays++) {
+				double truth = 2, sm = 1;
+				nearest nq = {(const double (*)[3])lo, (const double (*)[3])hi, q.a[j],
+				              pm_dadd(q.a[j], q.d), g, 2, &sm, 0};
+				for (int i = 0; i < n; i++)
+					if (tag[i] != skip)
+						truth = fmin(truth, entry_of(q.a[j], pm_dadd(q.a[j], q.d), lo[i], hi[i], g));
+				wrong += q.best[j] != truth;
+				pm_boxtree_beam(&t, q.a[j], q.a[j], q.d, -1, &sm, nearer, &nq);
+				alone += nq.calls;
+			}
+		}
+	}
+	CHECKF(wrong == 0, "%d of %d rays missed the nearest box", wrong, rays);
+	CHECKF(twice == 0, "%d boxes asked twice by one beam", twice);
+	CHECKF(asked < alone, "the beams asked %ld boxes, their rays alone %ld", asked, alone);
+	CHECKF(skippable > 1000 && skipped > skippable * 3 / 4, "%d of %d boxes tagged 0 entered passed over",
+	       skipped, skippable);
 	pm_boxtree_free(&t);
 }
 
@@ -229,30 +348,41 @@ mark_beyond(void *ctx, int i)
 }
 
 /* pm_boxtree_halfspace must report every box with a corner beyond the
- * plane, each once, and leave most of the others out. */
+ * plane, each once, and leave most of the others out; told to skip the
+ * boxes tagged 0 (in half the rounds), it must still report every other,
+ * and leave most of those out. */
 TEST(halfspace_finds_every_box_beyond)
 {
 	static double lo[MAXN][3], hi[MAXN][3];
 	static beyond bs;
+	static int tag[MAXN];
 	pm_boxtree t = {0};
 	pm_rng r = pm_rng_seed(7, 1);
-	int missed = 0, twice = 0, due = 0, others = 0, extra = 0;
+	int missed = 0, twice = 0, due = 0, others = 0, extra = 0, tagged = 0, untold = 0;
 
 	for (int round = 0; round < 40; round++) {
-		int n = 1 + (int)(u01(&r) * (MAXN - 1));
+		int n = 1 + (int)(u01(&r) * (MAXN - 1)), skip = round % 2 ? 0 : -1;
 		random_boxes(&r, n, 0.1, 0, lo, hi);
 		CHECK(pm_boxtree_build(&t, (const double (*)[3])lo, (const double (*)[3])hi, n, 0));
+		tag_boxes(n, (const double (*)[3])lo, (const double (*)[3])hi, tag);
+		pm_boxtree_tag(&t, tag);
 		for (int q = 0; q < 25; q++) {
 			pm_dvec3 N = pm_dv3(2 * u01(&r) - 1, 2 * u01(&r) - 1, 2 * u01(&r) - 1);
 			/* Planes that leave a tenth to most of the boxes beyond. */
 			double d = 0.4 + 0.6 * u01(&r);
 			memset(&bs, 0, sizeof bs);
-			CHECK(pm_boxtree_halfspace(&t, N, d, mark_beyond, &bs) == 0);
+			CHECK(pm_boxtree_halfspace(&t, N, d, skip, mark_beyond, &bs) == 0);
 			for (int i = 0; i < n; i++) {
 				int in = 0;
 				for (int c = 0; c < 8; c++)
 					in |= (c & 1 ? hi : lo)[i][0] * N.x + (c & 2 ? hi : lo)[i][1] * N.y +
 					      (c & 4 ? hi : lo)[i][2] * N.z > d;
+				if (tag[i] == skip) {
+					tagged += in;
+					untold += in && bs.count[i] > 0;
+					twice += bs.count[i] > 1;
+					continue;
+				}
 				due += in;
 				others += !in;
 				missed += in && bs.count[i] == 0;
@@ -264,6 +394,7 @@ TEST(halfspace_finds_every_box_beyond)
 	CHECKF(missed == 0 && twice == 0 && due > 1000, "%d of %d boxes beyond missed, %d reported twice",
 	       missed, due, twice);
 	CHECKF(extra < others / 4, "%d of %d boxes not beyond reported", extra, others);
+	CHECKF(tagged > 1000 && untold < tagged / 10, "%d of %d boxes beyond tagged 0 reported", untold, tagged);
 	pm_boxtree_free(&t);
 }
 
@@ -273,6 +404,7 @@ main(void)
 	RUN(segments_find_every_box_they_meet);
 	RUN(query_stops_where_asked);
 	RUN(rays_find_the_nearest_box);
+	RUN(beams_find_each_rays_nearest_box);
 	RUN(halfspace_finds_every_box_beyond);
 	return check_done();
 }
