@@ -14,7 +14,8 @@
  * and keeps no list: what x' sees of it comes from segments through a tree
  * of the cube's polygons (boxtree.h, seen_cast()). In a cube of many
  * groups (FATE_CAST_GROUPS) there are no lists of what a backward ray may
- * meet either: each point's ray goes through that tree (cast_fate()).
+ * meet either: the points' rays go through that tree, a few parallel ones
+ * in one walk (cast_fates()).
  * Only polygons that something can hide (or, there, that are lit and
  * seen) get sample points, and only their samples cost work per photon; a
  * photon on a sheet nothing touches costs a slab test and a dot product. All geometry is double and relative to x. */
@@ -67,7 +68,7 @@ _Static_assert(GRID * GRID <= 64 && GRID <= 16, "GRID too large for fates_hit()"
 #define SHEET_COS 0.7
 /* From this many groups in one cube (a rough mesh, facets facing every
  * way), the fates of P's points are found by rays through a tree of the
- * cube's polygons (cast_fate()), asking of each polygon met what P's list
+ * cube's polygons (cast_fates()), asking of each polygon met what P's list
  * would have said, rather than from lists: those hold, for each polygon,
  * most of the others, and the work grew with the square of the facets. A
  * smooth mesh of any density is a few sheets. */
@@ -142,14 +143,14 @@ typedef struct cpoly {
 	int ndyn;              /* samples whose fate depends on the direction */
 	double adyn;           /* ... their area seen from x' */
 	int grp;               /* its group (cgroup) */
-	int fcast;             /* fates by rays (cast_fate()): no F list, every
+	int fcast;             /* fates by rays (cast_fates()): no F list, every
 	                          point it shows x' is dynamic */
-	int gpos;              /* its place in sc->gp (list order, cast_fate()) */
+	int gpos;              /* its place in sc->gp (list order, cast_fates()) */
 	int fl0, nfl;          /* fates by rays: what its list would hold that
 	                          a ray from it may meet, sc->fl[fl0 ..], in
 	                          list order, or nfl -1: too many, each ray
 	                          goes through the tree (front_list()) */
-	int orun;              /* its object's run in sc->oby (cast_fate()) */
+	int orun;              /* its object's run in sc->oby (cast_fates()) */
 	uint64_t closed;       /* cast_closed() for runs r < CLOSED_KEPT: bit
 	                          2 r known, bit 2 r + 1 closed */
 } cpoly;
@@ -1377,7 +1378,8 @@ typedef struct cast_ctx {
 } cast_ctx;
 
 /* The tree of the cube's polygons' boxes, grown by 2 eps (past inside()'s
- * eps), made once an estimate when first asked (seen_cast(), cast_fate()).
+ * eps), made once an estimate when first asked (seen_cast(), cast_fates()),
+ * its nodes tagged with their polygons' group where they share one.
  * 0 if there is no room. */
 static int
 cube_tree(pm_comp_scratch *sc, double eps)
@@ -1970,7 +1972,7 @@ pair_lists(pm_comp_scratch *sc, const unsigned char *cvx, pm_dvec3 xo, pm_dvec3 
 			sc->nbl = P->r0;
 		}
 		P->f0 = sc->nbl;
-		/* Where fates go by rays, no F list: cast_fate() asks what it
+		/* Where fates go by rays, no F list: cast_fates() asks what it
 		 * would hold of the polygons a ray meets. */
 		P->fcast = !follow && P->lit && !P->unseen;
 		/* Where they are, one walk: those on P's plane go first, the
