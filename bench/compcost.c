@@ -3,7 +3,7 @@
  * "no cliff"): estimates at the camera's first photon-surface hits (pixel
  * centres), one thread, each timed alone (thread CPU time).
  *
- *   compcost [-c CAST_AT] [-f GROUPS] [-n PHOTONS] [-k K] [-r RUNS] [-o FILE] [-p LO,HI] SCENE
+ *   compcost [-c CAST_AT] [-f POLYS] [-n PHOTONS] [-k K] [-r RUNS] [-o FILE] [-p LO,HI] SCENE
  *   compcost -t SCENE      (prints the scene's triangles and stops)
  *
  * Prints "name<TAB>value" lines: the median over RUNS of the mean time per
@@ -70,7 +70,7 @@ bin_of(int polys)
 static int
 usage(void)
 {
-	fprintf(stderr, "usage: compcost [-c CAST_AT] [-f GROUPS] [-n PHOTONS] [-k K] [-r RUNS] [-o FILE] [-p LO,HI] SCENE\n");
+	fprintf(stderr, "usage: compcost [-c CAST_AT] [-f POLYS] [-n PHOTONS] [-k K] [-r RUNS] [-o FILE] [-p LO,HI] SCENE\n");
 	return 2;
 }
 

@@ -13,7 +13,7 @@
  * bench/compcost.sh). A polygon that many may hide stops its walk there
  * and keeps no list: what x' sees of it comes from segments through a tree
  * of the cube's polygons (boxtree.h, seen_cast()). In a cube of many
- * groups (FATE_CAST_GROUPS) there are no lists of what a backward ray may
+ * polygons (FATE_CAST_POLYS) there are no lists of what a backward ray may
  * meet either: the points' rays go through that tree, a few parallel ones
  * in one walk (cast_fates()).
  * Only polygons that something can hide (or, there, that are lit and
@@ -66,13 +66,23 @@ _Static_assert(GRID * GRID <= 64 && GRID <= 16, "GRID too large for fates_hit()"
  * dense mesh 1.6 times as much for no measurable change in the torture
  * scenes with curved meshes: BENCHMARKS.md, "Sheets".) */
 #define SHEET_COS 0.7
-/* From this many groups in one cube (a rough mesh, facets facing every
- * way), the fates of P's points are found by rays through a tree of the
- * cube's polygons (cast_fates()), asking of each polygon met what P's list
- * would have said, rather than from lists: those hold, for each polygon,
- * most of the others, and the work grew with the square of the facets. A
- * smooth mesh of any density is a few sheets. */
-#define FATE_CAST_GROUPS 97
+/* A patch that bends past SHEET_COS in the cube (a sphere, a torus's tube,
+ * a head) is peeled into sheets (peel()): at most PEEL_TRIES directions
+ * tried, each moved to the mean of what lies within SHEET_COS of it up to
+ * PEEL_STEPS times. Four tries leave 2 303 of meshroom's 243 389 polygons
+ * in cubes alone, sixteen 2 284; one try 28 372 (BENCHMARKS.md, "Sheets
+ * peeled"). */
+#define PEEL_TRIES 4
+#define PEEL_STEPS 4
+/* From this many polygons in a cube of two groups or more, the fates of
+ * P's points are found by rays through a tree of the cube's polygons
+ * (cast_fates()), asking of each polygon met what P's list would have
+ * said, rather than from lists: where two sheets of hundreds of facets
+ * face each other, or a rough mesh's facets face every way, the lists hold
+ * for each polygon most of the others, and the work grew with the square
+ * of the facets. 32, 64 and 128 cost meshroom 3.08, 2.97 and 2.97 G
+ * instructions, scanned 14.1, 14.3 and 15.0 G, dense 7.06 G each. */
+#define FATE_CAST_POLYS 64
 /* There, a polygon whose list would hold at most FRONT_MAX polygons that a
  * ray from it may meet, found among the first FRONT_SCAN whose boxes reach
  * its front, keeps them, and its rays try those alone (front_list()). */
@@ -107,7 +117,7 @@ _Static_assert(GRID * GRID <= 64 && GRID <= 16, "GRID too large for fates_hit()"
  * work that grows with the points, not the pairs. */
 #define CAST_AT 16
 int pm_comp_cast_at = CAST_AT;
-int pm_comp_fate_cast_from = FATE_CAST_GROUPS;
+int pm_comp_fate_cast_from = FATE_CAST_POLYS;
 int pm_comp_exact_overlap = 1;
 int pm_comp_shadow_from = 6;
 int pm_comp_fronts_wait = 1;
@@ -275,7 +285,7 @@ struct pm_comp_scratch {
 	                          walks from a polygon of a sheet pass over */
 	int btagcap;
 	int tree_built;        /* ... made once an estimate, when first asked */
-	int fcast;             /* fates by rays in this cube (FATE_CAST_GROUPS) */
+	int fcast;             /* fates by rays in this cube (FATE_CAST_POLYS) */
 	uint64_t *okey;        /* object and polygon, while runs are made */
 	int okeycap;
 	int *oby;              /* the polygons by object, and where each */
@@ -1091,13 +1101,102 @@ tentative(pm_comp_scratch *sc, const uint32_t *key, cgroup *tent, int *tg, int h
 	return nt;
 }
 
+/* The mean of the sides that count of sc->g[ord[lo .. hi)], unit, and
+ * whether each of them lies within SHEET_COS of it. */
+static pm_dvec3
+cone_mean(const pm_comp_scratch *sc, const int *ord, int lo, int hi, int *ok)
+{
+	pm_dvec3 M = pm_dv3(0, 0, 0);
+	for (int i = lo; i < hi; i++)
+		M = pm_dadd(M, pm_dscale(sc->g[ord[i]].Ne, sc->g[ord[i]].A));
+	double l = pm_dlen(M);
+	M = l > 0 ? pm_dscale(M, 1 / l) : pm_dv3(0, 0, 0);
+	*ok = l > 0;
+	for (int i = lo; i < hi && *ok; i++)
+		*ok = pm_ddot(sc->g[ord[i]].Ne, M) >= SHEET_COS;
+	return M;
+}
+
+/* Moves the polygons of ord[lo .. hi) within SHEET_COS of M to its front;
+ * returns where they end. */
+static int
+in_cone(const pm_comp_scratch *sc, int *ord, int lo, int hi, pm_dvec3 M)
+{
+	int k = lo;
+	for (int i = lo; i < hi; i++)
+		if (pm_ddot(sc->g[ord[i]].Ne, M) >= SHEET_COS) {
+			int t = ord[k];
+			ord[k++] = ord[i];
+			ord[i] = t;
+		}
+	return k;
+}
+
+/* A smooth patch that bends past SHEET_COS in the cube, peeled into
+ * sheets: from a direction (the patch's mean first, then the normal of the
+ * largest polygon left), the polygons within SHEET_COS of it, then of
+ * their mean, until they all lie within SHEET_COS of their own mean: they
+ * are a sheet, and the rest go on. A try that finds none leaves its seed a
+ * polygon of its own. The first step of the first try is what groups()
+ * did before there were tries, so a patch it made a sheet of stays one.
+ * Sorts sc->gp[0 .. ng) by tentative group on the way; sets the keys of
+ * each sheet's polygons to 0x40000000 and its first polygon. */
+static void
+peel(pm_comp_scratch *sc, cgroup *tent, const int *tg, int nt, uint32_t *key)
+{
+	int *ord = sc->gp, ng = sc->ng;
+
+	for (int t = 0, o = 0; t < nt; t++) {
+		tent[t].p0 = o;
+		o += tent[t].np;
+	}
+	for (int a = 0; a < ng; a++)
+		ord[tent[tg[a]].p0++] = a;
+	for (int t = 0; t < nt; t++) {
+		cgroup *T = &tent[t];
+		int hi = T->p0, lo = hi - T->np;
+		if (T->np < 2 || T->cmin >= SHEET_COS)
+			continue;
+		pm_dvec3 M = T->M;
+		for (int r = 0, seed = -1; r < PEEL_TRIES && hi - lo >= 2; r++) {
+			if (r > 0) {
+				int big = lo;
+				for (int i = lo + 1; i < hi; i++)
+					if (sc->g[ord[i]].A > sc->g[ord[big]].A)
+						big = i;
+				seed = ord[big];
+				M = sc->g[seed].Ne;
+			}
+			int k = lo, ok = 0;
+			for (int it = 0; it < PEEL_STEPS && !ok; it++) {
+				k = in_cone(sc, ord, lo, hi, M);
+				if (k - lo < 2)
+					break;
+				M = cone_mean(sc, ord, lo, k, &ok);
+			}
+			if (ok) {
+				for (int i = lo; i < k; i++)
+					key[ord[i]] = 0x40000000u | (uint32_t)ord[lo];
+				lo = k;
+			} else if (seed >= 0) {
+				/* No sheet from the seed's direction: it stays alone. */
+				for (int i = lo; i < hi; i++)
+					if (ord[i] == seed) {
+						ord[i] = ord[lo];
+						ord[lo++] = seed;
+						break;
+					}
+			}
+		}
+	}
+}
+
 /* Groups the cube's polygons (cgroup). A smooth patch's polygons in the
  * cube whose sides that count lie within SHEET_COS of their mean are one
- * sheet; where they do not (the patch curves or is rough at the cube's
- * scale), those within SHEET_COS of that mean are one sheet if they lie
- * within it of their own mean too, and the rest are each a group of their
- * own, as is every polygon of no smooth patch. Needs every polygon's Ne, A,
- * xon and xpar. */
+ * sheet; where they do not (the patch bends or is rough at the cube's
+ * scale), it is peeled into sheets (peel()), and what no sheet takes is a
+ * group of its own, as is every polygon of no smooth patch. Needs every
+ * polygon's Ne, A, xon and xpar. */
 static int
 groups(pm_comp_scratch *sc, const uint32_t *patch, pm_dvec3 n)
 {
@@ -1129,14 +1228,10 @@ groups(pm_comp_scratch *sc, const uint32_t *patch, pm_dvec3 n)
 	uint32_t *key = (uint32_t *)(void *)sc->t;
 	for (int a = 0; a < ng; a++)
 		key[a] = patch ? patch[sc->g[a].g] : sc->g[a].g;
-	tentative(sc, key, tent, tg, hn);
-	for (int a = 0; a < ng; a++) {
-		const cgroup *T = &tent[tg[a]];
-		if (T->np > 1 && (T->cmin >= SHEET_COS || pm_ddot(sc->g[a].Ne, T->M) >= SHEET_COS))
-			key[a] = (uint32_t)tg[a];
-		else
-			key[a] = 0x80000000u | (uint32_t)a;
-	}
+	int nt = tentative(sc, key, tent, tg, hn);
+	for (int a = 0; a < ng; a++)
+		key[a] = tent[tg[a]].np > 1 && tent[tg[a]].cmin >= SHEET_COS ? (uint32_t)tg[a] : 0x80000000u | (uint32_t)a;
+	peel(sc, tent, tg, nt, key);
 	tentative(sc, key, sub, sg, hn);
 	/* Final numbers in order of each group's lowest polygon. */
 	for (int a = 0; a < ng; a++) {
@@ -2346,13 +2441,15 @@ weights(const pm_polyindex *pi, pm_vec3 x, pm_vec3 n,
 		P->adyn = 0;
 		P->lit = 0;
 	}
+	z.groups = sc->ng;
 	if (sc->ng == 1) {
 		one_polygon(sc, pos, xd, nd, h, eps, w, &z);
 		goto out;
 	}
 	if (!groups(sc, pi->patch, nd))
 		goto out;
-	sc->fcast = sc->ngr >= pm_comp_fate_cast_from;
+	z.groups = sc->ngr;
+	sc->fcast = sc->ngr >= 2 && sc->ng >= pm_comp_fate_cast_from;
 	if (sc->fcast && !cast_prepare(sc))
 		goto out;
 	/* What the pair tests need (none, where one sheet is all there is). */

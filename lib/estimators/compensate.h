@@ -20,7 +20,8 @@
  *  - The facets of one smooth patch of a mesh in the cube whose sides that
  *    count lie within 45 degrees of their mean are one sheet: they hide none
  *    of each other from x', and a backward ray leaving the sheet does not
- *    meet it again (exact for rays steeper than its slopes).
+ *    meet it again (exact for rays steeper than its slopes). A patch that
+ *    bends more within the cube is peeled into several such sheets.
  * Other choices:
  *  - The cube is the smallest L-infinity cube around x holding k photons. The
  *    search may have found only some of the photons on that cube's boundary
@@ -93,7 +94,8 @@ typedef struct pm_comp_stats {
 	int hidden;      /* of those, failing the model's test (not on a facing
 	                    polygon of the cube, unseen from x', another fate) */
 	int polys;       /* polygons with area in the cube */
-	int sampled;     /* of those, given sample points (something can hide part of it) */
+	int groups;      /* sheets and lone polygons they make (compensate.c, groups()) */
+	int sampled;     /* of the polygons, given sample points (something can hide part of it) */
 	int cast;        /* of those, with so many that may hide them that what x'
 	                    sees of them is found through a tree (pm_comp_cast_at) */
 	int fcast;       /* of the sampled, whose fates were found by rays
@@ -132,13 +134,14 @@ void pm_comp_weights_cube(const pm_polyindex *pi, pm_vec3 x, pm_vec3 n,
  * list. For tests and benchmarks, set before any estimate runs. */
 extern int pm_comp_cast_at;
 
-/* From this many groups in a cube (sheets and lone polygons: a rough mesh),
- * the fates of its polygons' points are found by rays through a tree of
- * the cube's polygons, each polygon met asked what the polygon's list would
- * have said of it, in place of the lists (compensate.c, FATE_CAST_GROUPS):
- * the same model for work that grows with the points, not the pairs. 97
- * unless changed; 0 casts in every cube of several polygons, INT_MAX never
- * (lists only). For tests and benchmarks, set before any estimate runs. */
+/* From this many polygons in a cube of two groups or more (sheets and
+ * lone polygons), the fates of its polygons' points are found by rays
+ * through a tree of the cube's polygons, each polygon met asked what the
+ * polygon's list would have said of it, in place of the lists
+ * (compensate.c, FATE_CAST_POLYS): the same model for work that grows with
+ * the points, not the pairs. 64 unless changed; 0 casts in every cube of
+ * several groups, INT_MAX never (lists only). For tests and benchmarks,
+ * set before any estimate runs. */
 extern int pm_comp_fate_cast_from;
 
 /* 1: where a photon's backward rays from a polygon wholly seen from x' can
