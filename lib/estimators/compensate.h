@@ -21,7 +21,9 @@
  *    count lie within 45 degrees of their mean are one sheet: they hide none
  *    of each other from x', and a backward ray leaving the sheet does not
  *    meet it again (exact for rays steeper than its slopes). A patch that
- *    bends more within the cube is peeled into several such sheets.
+ *    bends more within the cube is peeled into several such sheets; facets
+ *    that count on their fronts and those that count on their backs (the
+ *    near and far side of a thin tube) are never one sheet.
  * Other choices:
  *  - The cube is the smallest L-infinity cube around x holding k photons. The
  *    search may have found only some of the photons on that cube's boundary
