@@ -1500,24 +1500,31 @@ tube(double u, double v)
 	return pm_v3((float)(tube_r * sin(t)), (float)(2 * v - 1), (float)(tube_r * cos(t)));
 }
 
-/* A tube of 48 facets around, about as thick as the cube, under a
- * parallel beam: each cube holds much of its girth, normals turning
- * through 100 degrees or more, one smooth patch. Peeled into a few sheets
- * (as lone facets, 5 to 35 groups a cube here; on meshroom they cost each
- * estimate twice its time), and the estimate's mean over 400 points
- * right within 5 % (each one spreads about 34 %: a cube's photons are
- * mostly on facets x' does not see). Points lit (d . n >= 0.3), away from
- * the tube's ends. */
-TEST(bent_patch_peeled_into_sheets)
+/* beam_estimates() on a tube of radius r, 48 facets around, at 400 lit
+ * points (d . n >= 0.3) away from its ends. */
+static beam_run
+tube_estimates(double r)
 {
 	tmesh m;
-	tube_r = 0.03;
+	tube_r = r;
 	tm_grid(&m, 48, 16, tube);
 	beam_run b = beam_estimates(&m, unit(0.25, 0.1, 0.96), 3, 0.3, 0.8, 400);
+	tm_free(&m);
+	return b;
+}
+
+/* A tube about as thick as the cube under a parallel beam: each cube holds
+ * much of its girth, normals turning through 100 degrees or more, one
+ * smooth patch. Peeled into a few sheets (as lone facets, 5 to 35 groups
+ * a cube here; on meshroom they cost each estimate twice its time), and
+ * the estimates' mean right within 5 % (each one spreads about 34 %: a
+ * cube's photons are mostly on facets x' does not see). */
+TEST(bent_patch_peeled_into_sheets)
+{
+	beam_run b = tube_estimates(0.03);
 	CHECKF(b.minpolys >= 12, "%d polygons", b.minpolys);
 	CHECKF(b.few >= 380, "%d of 400 cubes in 4 groups or fewer", b.few);
 	CHECKF(fabs(b.mean - 1) < 0.05, "mean/want=%g", b.mean);
-	tm_free(&m);
 }
 
 /* A tube half as thick as the cube (it holds the whole girth): from x'
@@ -1527,13 +1534,9 @@ TEST(bent_patch_peeled_into_sheets)
  * As one, the mean read 0.21 of the exact. */
 TEST(thin_tube_sides_apart)
 {
-	tmesh m;
-	tube_r = 0.015;
-	tm_grid(&m, 48, 16, tube);
-	beam_run b = beam_estimates(&m, unit(0.25, 0.1, 0.96), 3, 0.3, 0.8, 400);
+	beam_run b = tube_estimates(0.015);
 	CHECKF(b.minpolys >= 46, "%d polygons", b.minpolys);
 	CHECKF(fabs(b.mean - 1) < 0.05, "mean/want=%g", b.mean);
-	tm_free(&m);
 }
 
 /* tscene holding a 2 x 2 floor at z = 0 (twice, as two objects, if twice)
