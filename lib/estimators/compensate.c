@@ -70,8 +70,8 @@ _Static_assert(GRID * GRID <= 64 && GRID <= 16, "GRID too large for fates_hit()"
  * a head) is peeled into sheets (peel()): at most PEEL_TRIES directions
  * tried, each moved to the mean of what lies within SHEET_COS of it up to
  * PEEL_STEPS times. Four tries leave 2 303 of meshroom's 243 389 polygons
- * in cubes alone, sixteen 2 284; one try 28 372 (BENCHMARKS.md, "Sheets
- * peeled"). */
+ * in cubes alone, sixteen 2 284; one try 28 372 (BENCHMARKS.md, "Bent
+ * patches peeled into sheets"). */
 #define PEEL_TRIES 4
 #define PEEL_STEPS 4
 /* From this many polygons in a cube of two groups or more, the fates of
@@ -1232,9 +1232,9 @@ groups(pm_comp_scratch *sc, const uint32_t *patch, pm_dvec3 n)
 	 * over the other, whose sides that count point the same way. As one
 	 * sheet, the near side hid none of the far one, whose inside then
 	 * counted as target area: a thin tube under a parallel beam read 0.21
-	 * of the exact (test_compensate, thin_tube_sides_apart). Patch numbers
- * are polygon numbers, under 2^32 / 3 (poly_start counts 3 or more
- * vertices a polygon in 32 bits), so the shift loses nothing. */
+	 * of the exact (test_compensate, thin_tube_sides_apart). Patch
+	 * numbers are polygon numbers, under 2^32 / 3 (poly_start counts 3 or
+	 * more vertices a polygon in 32 bits), so the shift loses nothing. */
 	for (int a = 0; a < ng; a++)
 		key[a] = (patch ? patch[sc->g[a].g] : sc->g[a].g) << 1 | (pm_ddot(sc->g[a].Ne, sc->g[a].N) < 0);
 	int nt = tentative(sc, key, tent, tg, hn);
