@@ -302,6 +302,13 @@ struct pm_comp_scratch {
 	pm_comp_stats last;
 };
 
+/* P's group if it is a sheet, which the walks from P pass over, else -1. */
+static inline int
+sheet_of(const pm_comp_scratch *sc, const cpoly *P)
+{
+	return sc->gr[P->grp].sheet ? P->grp : -1;
+}
+
 pm_comp_scratch *
 pm_comp_scratch_new(int k)
 {
@@ -1523,7 +1530,7 @@ hides(void *vq, int b)
 
 	if (!crosses(sc, B, q->xo, q->y, pm_ddot(B->N, q->xo) - B->d, eps))
 		return 0;
-	return !skip_group(sc, sc->cvx, P, B->grp, sc->gr[P->grp].sheet ? P->grp : -1, q->xo, eps) &&
+	return !skip_group(sc, sc->cvx, P, B->grp, sheet_of(sc, P), q->xo, eps) &&
 	       may_hide(sc, P, (int)(P - sc->g), b, sc->pl, q->xo, eps, P->own);
 }
 
@@ -1740,7 +1747,7 @@ cast_fates(pm_comp_scratch *sc, const cpoly *P, const pm_dvec3 *y, int n, pm_dve
            int covers, int *f)
 {
 	/* Every polygon lies in the cube, within 2 sqrt(3) h of y. */
-	fate_ctx q = {sc, P, y, psi, eps, 4 * h, 1, n, sc->gr[P->grp].sheet ? P->grp : -1, covers, {0}, {0}, {0}};
+	fate_ctx q = {sc, P, y, psi, eps, 4 * h, 1, n, sheet_of(sc, P), covers, {0}, {0}, {0}};
 	pm_dvec3 lo = y[0], hi = y[0];
 
 	if (!cube_tree(sc, eps)) {
@@ -1840,7 +1847,7 @@ front_visit(void *vq, int b)
 static int
 front_list(pm_comp_scratch *sc, cpoly *P, double eps)
 {
-	front_ctx q = {sc, P, eps, sc->gr[P->grp].sheet ? P->grp : -1, 0};
+	front_ctx q = {sc, P, eps, sheet_of(sc, P), 0};
 
 	if (!cube_tree(sc, eps))
 		return 0;
@@ -1915,7 +1922,7 @@ cover_visit(void *vq, int b)
 static int
 cast_cover(pm_comp_scratch *sc, const cpoly *P, pm_dvec3 y, double eps)
 {
-	cover_ctx q = {sc, P, y, eps, sc->gr[P->grp].sheet ? P->grp : -1, -1};
+	cover_ctx q = {sc, P, y, eps, sheet_of(sc, P), -1};
 
 	if (!cube_tree(sc, eps)) {
 		sc->oom = 1;
@@ -2003,8 +2010,7 @@ pair_lists(pm_comp_scratch *sc, const unsigned char *cvx, pm_dvec3 xo, pm_dvec3 
 		plsx[b] = pm_ddot(sc->g[b].N, xo) - sc->g[b].d;
 	for (int a = 0; a < ng; a++) {
 		cpoly *P = &sc->g[a];
-		const cgroup *SA = &sc->gr[P->grp];
-		int own = nxobj == 4, sgrp = SA->sheet ? P->grp : -1;
+		int own = nxobj == 4, sgrp = sheet_of(sc, P);
 		P->r0 = sc->nbl;
 		/* The back of a solid, seen from outside it, is hidden by the
 		 * solid itself, unless x lies on that solid (a face across a
