@@ -11,10 +11,12 @@
  * compensated estimates (the same for any change that computes the same
  * thing), and per bin of polygons in the cube (1, 2, 3-4, 5-8, ...) the
  * estimates there and their mean time. -o writes one line per estimate:
- * polygons in its cube, microseconds (compensated, classical), and the
- * compensated RGB, for plots and for comparing two builds estimate by
- * estimate. -c sets the compensated estimate's CAST_AT (pm_comp_cast_at,
- * compensate.h), which changes its time, not its answers. -p runs the
+ * polygons in its cube, those sampled, microseconds (compensated,
+ * classical), the compensated RGB, the groups (sheets and lone polygons)
+ * and the polygons whose fates went by rays (pm_comp_stats), for plots
+ * and for comparing two builds estimate by estimate. -c sets the
+ * compensated estimate's CAST_AT (pm_comp_cast_at, compensate.h), which
+ * changes its time, not its answers. -p runs the
  * compensated estimates whose cubes hold LO to HI polygons five times more
  * in profile_range(), for a profiler to count those alone:
  *   valgrind --tool=callgrind --collect-atstart=no \
@@ -169,9 +171,10 @@ main(int argc, char **argv)
 	pm_comp_scratch *sc = pm_comp_scratch_new(k);
 	double *tcl = malloc((size_t)ne * sizeof *tcl), *tco = malloc((size_t)ne * sizeof *tco);
 	int *polys = malloc((size_t)ne * sizeof *polys), *nsam = malloc((size_t)ne * sizeof *nsam);
+	int *ngrp = malloc((size_t)ne * sizeof *ngrp), *nfc = malloc((size_t)ne * sizeof *nfc);
 	pm_vec3 *L = malloc((size_t)ne * sizeof *L);
 	double tv[99], tw[99], sink = 0;
-	if (!nn || !sc || !tcl || !tco || !polys || !nsam || !L)
+	if (!nn || !sc || !tcl || !tco || !polys || !nsam || !ngrp || !nfc || !L)
 		die(path, "out of memory");
 	for (long j = 0; j < ne; j++)
 		tcl[j] = tco[j] = INFINITY;
@@ -193,6 +196,8 @@ main(int argc, char **argv)
 			tco[j] = t < tco[j] ? t : tco[j];
 			polys[j] = pm_comp_last(sc)->polys;
 			nsam[j] = pm_comp_last(sc)->sampled;
+			ngrp[j] = pm_comp_last(sc)->groups;
+			nfc[j] = pm_comp_last(sc)->fcast;
 		}
 		tw[i] = cpu_now() - t0;
 	}
@@ -238,8 +243,8 @@ main(int argc, char **argv)
 		if (!f)
 			die(out, "cannot create");
 		for (long j = 0; j < ne; j++)
-			fprintf(f, "%d\t%d\t%.3f\t%.3f\t%.9g\t%.9g\t%.9g\n", polys[j], nsam[j], 1e6 * tco[j],
-			        1e6 * tcl[j], L[j].x, L[j].y, L[j].z);
+			fprintf(f, "%d\t%d\t%.3f\t%.3f\t%.9g\t%.9g\t%.9g\t%d\t%d\n", polys[j], nsam[j], 1e6 * tco[j],
+			        1e6 * tcl[j], L[j].x, L[j].y, L[j].z, ngrp[j], nfc[j]);
 		if (ferror(f) | fclose(f))
 			die(out, "cannot write");
 	}
