@@ -297,6 +297,7 @@ struct pm_comp_scratch {
 	                          in list order */
 	int flcap, flkcap, nfl;
 	int pyr_of;            /* the polygon whose pyramid sc->pyr holds, or -1 */
+	int ob_last;           /* others_behind()'s last stopping group, or -1 */
 	const unsigned char *cvx;
 	int oom;
 	pm_comp_stats last;
@@ -1427,17 +1428,24 @@ group_behind(const cgroup *G, pm_dvec3 M, double m, double eps)
  * of the 700 polygons in the dearest cubes). Groups wholly behind are
  * told by their boxes; stops at the first polygon that is not behind. */
 static int
-others_behind(const pm_comp_scratch *sc, const cpoly *P, double eps)
+others_behind(pm_comp_scratch *sc, const cpoly *P, double eps)
 {
-	for (int G = 0; G < sc->ngr; G++) {
+	/* The group that stopped the last walk first: a neighbour's is
+	 * likely to stop this one (a rough mesh's lone facets). */
+	for (int i = -1; i < sc->ngr; i++) {
+		int G = i < 0 ? sc->ob_last : i;
+		if (G < 0 || G >= sc->ngr || (i >= 0 && G == sc->ob_last))
+			continue;
 		const cgroup *Gr = &sc->gr[G];
 		if (G == P->grp || group_behind(Gr, P->Ne, P->de, eps))
 			continue;
 		for (int gi = Gr->p0; gi < Gr->p0 + Gr->np; gi++) {
 			double lo, hi;
 			span(sc, &sc->g[sc->gp[gi]], P->Ne, P->de, &lo, &hi);
-			if (!(hi <= eps && lo < -eps))
+			if (!(hi <= eps && lo < -eps)) {
+				sc->ob_last = G;
 				return 0;
+			}
 		}
 	}
 	return 1;
@@ -2012,6 +2020,7 @@ pair_lists(pm_comp_scratch *sc, const unsigned char *cvx, pm_dvec3 xo, pm_dvec3 
 	sc->nbl = 0;
 	sc->tree_built = 0;
 	sc->pyr_of = -1;
+	sc->ob_last = -1;
 	sc->cvx = cvx;
 	if (!pm_grow((void **)&sc->pl, &sc->plcap, 0, ng, sizeof *sc->pl))
 		return 0;
