@@ -1418,36 +1418,45 @@ group_behind(const cgroup *G, pm_dvec3 M, double m, double eps)
 	return hi < -eps;
 }
 
-/* 1 if every polygon outside P's group lies behind P's plane, touching it
- * at most (within eps, as a neighbour across an edge does) and not lying
- * in it: then P's list (pair_lists()) would hold none of them, as cover
- * (in P's plane), layer or solid (part in front of it) or solid closed
- * (some polygon of it in front), and no ray leaving P's front has a fate
- * but -1. A convex stretch of a mesh is such a sheet for the rest of it:
- * a sheet and the back of the same surface past its ridge (meshroom: 600
- * of the 700 polygons in the dearest cubes). Groups wholly behind are
- * told by their boxes; stops at the first polygon that is not behind. */
+/* 1 if some polygon of group G, not P's, is not behind P's plane: lies
+ * in it, has part in front of it, or is more than eps over it (a
+ * neighbour across an edge touches it within eps and is behind). A group
+ * wholly behind is told by its box. */
+static int
+in_front(const pm_comp_scratch *sc, const cpoly *P, int G, double eps)
+{
+	const cgroup *Gr = &sc->gr[G];
+
+	if (G == P->grp || group_behind(Gr, P->Ne, P->de, eps))
+		return 0;
+	for (int gi = Gr->p0; gi < Gr->p0 + Gr->np; gi++) {
+		double lo, hi;
+		span(sc, &sc->g[sc->gp[gi]], P->Ne, P->de, &lo, &hi);
+		if (!(hi <= eps && lo < -eps))
+			return 1;
+	}
+	return 0;
+}
+
+/* 1 if no group but P's is in front of P (in_front()): then P's list
+ * (pair_lists()) would hold none of their polygons, as cover (in P's
+ * plane), layer or solid (part in front of it) or solid closed (some
+ * polygon of it in front), and no ray leaving P's front has a fate but
+ * -1. A convex stretch of a mesh is such a sheet for the rest of it: a
+ * sheet and the back of the same surface past its ridge (meshroom: 600 of
+ * the 700 polygons in the dearest cubes). */
 static int
 others_behind(pm_comp_scratch *sc, const cpoly *P, double eps)
 {
 	/* The group that stopped the last walk first: a neighbour's is
 	 * likely to stop this one (a rough mesh's lone facets). */
-	for (int i = -1; i < sc->ngr; i++) {
-		int G = i < 0 ? sc->ob_last : i;
-		if (G < 0 || G >= sc->ngr || (i >= 0 && G == sc->ob_last))
-			continue;
-		const cgroup *Gr = &sc->gr[G];
-		if (G == P->grp || group_behind(Gr, P->Ne, P->de, eps))
-			continue;
-		for (int gi = Gr->p0; gi < Gr->p0 + Gr->np; gi++) {
-			double lo, hi;
-			span(sc, &sc->g[sc->gp[gi]], P->Ne, P->de, &lo, &hi);
-			if (!(hi <= eps && lo < -eps)) {
-				sc->ob_last = G;
-				return 0;
-			}
+	if (sc->ob_last >= 0 && in_front(sc, P, sc->ob_last, eps))
+		return 0;
+	for (int G = 0; G < sc->ngr; G++)
+		if (G != sc->ob_last && in_front(sc, P, G, eps)) {
+			sc->ob_last = G;
+			return 0;
 		}
-	}
 	return 1;
 }
 
