@@ -1966,6 +1966,96 @@ TEST(convex_sheets_need_no_fates)
 	tm_free(&m);
 }
 
+static pm_vec3 tile32(double u, double v) { return pm_v3((float)(u - 0.5), (float)(v - 0.5), 0); }
+
+/* Sample cells resolve the cube, not the mesh: a floor of 32 x 32 tiles,
+ * each about a thousandth of the cube's face, and a wall across it at
+ * y = 0.2 (off the tiles' rows) that hides the floor beyond it from x'
+ * and may meet backward rays from the floor in front. Photons arriving
+ * straight down meet nothing, so their target area is the floor x' sees:
+ * the cube's width times the depth up to the wall, exactly. The tiles are
+ * sampled (every one has fates), one cell each, and the area must be the
+ * exact one to within the row of tiles the wall stands on (before, each
+ * tile had 2 x 2 cells: four times the points for a finer answer than a
+ * tile of a cube's size ever gets). */
+TEST(tiny_tiles_one_cell_each)
+{
+	static pm_vec3 pos[4096], dir[4096];
+	static double w[4096];
+	tmesh m;
+	tphotons p = {0};
+	pm_rng r = pm_rng_seed(31, 7);
+	pm_polyindex *pi;
+	pm_error err;
+	const double h = 0.45, wall = 0.2, row = 1.0 / 32;
+	const pm_vec3 x = pm_v3(0.013f, -0.021f, 0);
+
+	tm_grid(&m, 32, 32, tile32);
+	/* The wall: one more quad of the mesh, facing x (-y), its bottom
+	 * edge on the floor, higher than the cube. */
+	uint32_t nv = m.s.nverts, q = m.s.npolys;
+	m.verts = realloc(m.verts, (nv + 4) * sizeof *m.verts);
+	m.normal = realloc(m.normal, (q + 1) * sizeof *m.normal);
+	m.start = realloc(m.start, (q + 2) * sizeof *m.start);
+	m.vidx = realloc(m.vidx, 4 * (q + 1) * sizeof *m.vidx);
+	m.pobj = realloc(m.pobj, (q + 1) * sizeof *m.pobj);
+	CHECK(m.verts && m.normal && m.start && m.vidx && m.pobj);
+	m.verts[nv] = pm_v3(-0.6f, (float)wall, 0);
+	m.verts[nv + 1] = pm_v3(0.6f, (float)wall, 0);
+	m.verts[nv + 2] = pm_v3(0.6f, (float)wall, 1);
+	m.verts[nv + 3] = pm_v3(-0.6f, (float)wall, 1);
+	for (int i = 0; i < 4; i++)
+		m.vidx[4 * q + i] = nv + (uint32_t)i;
+	m.normal[q] = pm_v3(0, -1, 0);
+	m.pobj[q] = 0;
+	m.start[q + 1] = m.start[q] + 4;
+	m.s.verts = m.verts;
+	m.s.poly_normal = m.normal;
+	m.s.poly_start = m.start;
+	m.s.poly_vert = m.vidx;
+	m.s.poly_obj = m.pobj;
+	m.s.nverts = nv + 4;
+	m.s.npolys = q + 1;
+	CHECK(pm_polyindex_build(&pi, &m.s, m.verts, &err) == 0);
+
+	p.flux = 1e-3;
+	for (int i = 0; i < 400; i++)
+		tp_add(&p, pm_v3((float)(rnd(&r) - 0.5), (float)(rnd(&r) - 0.5), 0), UP, 0);
+	int in = 0;
+	for (int i = 0; i < p.n; i++)
+		if (linf(p.pos[i], x) < h) {
+			pos[in] = p.pos[i];
+			dir[in++] = p.dir[i];
+		}
+	pm_comp_scratch *sc = pm_comp_scratch_new(in);
+	pm_comp_stats st;
+	pm_comp_weights_cube(pi, x, UP, pos, dir, in, h, sc, w, &st);
+
+	double exact = 2 * h * (wall - (x.y - h)), worst = 0;
+	int front = 0, wrong = 0;
+	for (int i = 0; i < in; i++) {
+		double y = pos[i].y;
+		if (y < wall - row) {
+			front++;
+			if (!(w[i] > 0))
+				wrong++;
+			else
+				worst = fmax(worst, fabs(1 / w[i] - exact));
+		} else if (y > wall + row)
+			wrong += w[i] != 0;
+	}
+	CHECKF(st.polys > 700 && st.sampled > 700, "%d polygons, %d sampled", st.polys, st.sampled);
+	CHECKF(st.cells == st.sampled, "%d cells on %d polygons", st.cells, st.sampled);
+	CHECKF(front > 100 && wrong == 0, "%d of %d photons in front of the wall or behind it wrong", wrong,
+	       front);
+	CHECKF(worst <= 2 * h * row, "target area off by %g of %g (a row of tiles: %g)", worst, exact,
+	       2 * h * row);
+	pm_comp_scratch_free(sc);
+	pm_polyindex_free(pi);
+	tp_free(&p);
+	tm_free(&m);
+}
+
 int
 main(void)
 {
@@ -2000,5 +2090,6 @@ main(void)
 	RUN(fronts_wait_change_nothing);
 	RUN(rays_find_the_fates_the_lists_find);
 	RUN(convex_sheets_need_no_fates);
+	RUN(tiny_tiles_one_cell_each);
 	return check_done();
 }
