@@ -90,6 +90,10 @@ _Static_assert(GRID * GRID <= 64 && GRID <= 16, "GRID too large for fates_hit()"
 #define FRONT_SCAN 64
 /* ... a polygon wholly in front of it. */
 #define FRONT (1 << 29)
+/* The polygons whose planes hold a photon that weights() keeps while it
+ * scans for them, so that choosing among them (an edge, two triangles of
+ * one quad) need not scan again; past this many it does. */
+#define PLANES_KEPT 8
 /* cast_closed()'s answers a polygon keeps: two bits a run. */
 #define CLOSED_KEPT 32
 /* From this many polygons in the cube, the candidates that may hide one
@@ -2609,24 +2613,33 @@ weights(const pm_polyindex *pi, pm_vec3 x, pm_vec3 n,
 			continue;
 		}
 		/* A photon in the cube lies on one of its polygons: where only
-		 * one plane holds it, that one (no inside test needed). */
-		int nplane = 0, first = -1;
+		 * one plane holds it, that one (no inside test needed). The
+		 * first few that do are kept for the choice below. */
+		int nplane = 0, held[PLANES_KEPT];
 		for (int k = 0; k < nm; k++) {
 			const cgroup *Gr = &sc->gr[sc->gm[k]];
 			for (int gi = Gr->p0; gi < Gr->p0 + Gr->np; gi++) {
 				const cpoly *P = &sc->g[sc->gp[gi]];
 				if (fabs(pm_ddot(P->N, r) - P->d) > eps)
 					continue;
-				if (nplane++ == 0)
-					first = sc->gp[gi];
+				if (nplane < PLANES_KEPT)
+					held[nplane] = sc->gp[gi];
+				nplane++;
 			}
 		}
 		if (nplane == 1)
-			own = pm_ddot(psi, sc->g[first].Ne) > 0 ? first : -1;
-		/* Where several do (an edge; the same surface twice), the
-		 * lowest polygon number that faces it and holds it: the one the
-		 * target area keeps of a surface given twice. */
-		for (int k = 0; k < nm && nplane > 1; k++) {
+			own = pm_ddot(psi, sc->g[held[0]].Ne) > 0 ? held[0] : -1;
+		/* Where several do (an edge; the same surface twice; the two
+		 * triangles of a mesh's quad), the lowest polygon number that
+		 * faces it and holds it: the one the target area keeps of a
+		 * surface given twice. Only those whose planes hold it can. */
+		for (int t = 0; nplane > 1 && nplane <= PLANES_KEPT && t < nplane; t++) {
+			const cpoly *P = &sc->g[held[t]];
+			if (fabs(pm_ddot(P->N, r) - P->d) <= eps && pm_ddot(psi, P->Ne) > 0 &&
+			    (own < 0 || P->g < sc->g[own].g) && inside(sc, P, r, eps, 1))
+				own = held[t];
+		}
+		for (int k = 0; k < nm && nplane > PLANES_KEPT; k++) {
 			const cgroup *Gr = &sc->gr[sc->gm[k]];
 			for (int gi = Gr->p0; gi < Gr->p0 + Gr->np; gi++) {
 				int a = sc->gp[gi];
