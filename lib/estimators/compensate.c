@@ -2217,10 +2217,11 @@ sample(pm_comp_scratch *sc, cpoly *P, pm_dvec3 xo, double h, double eps)
 	/* Cells of about the cube's face over GRID x GRID whatever the mesh: a
 	 * polygon smaller than one gets one cell. A floor of two per side cost
 	 * scanned 14 % and dense 11 % of an estimate's time, for areas finer
-	 * than a large polygon's cells ever are; and it halved the least
-	 * target area a photon on such a polygon gets (its cell), the floor
-	 * that scanned's brightest estimates rest on (BENCHMARKS.md, "One
-	 * cell for a polygon smaller than one"). */
+	 * than a large polygon's cells ever are, and cut the least target
+	 * area of a photon on such a polygon (its cell) to a half or a
+	 * quarter of the polygon: a photon alone on a sliver of its facet
+	 * weighed up to four times as much (BENCHMARKS.md, "One cell for a
+	 * polygon smaller than one"). */
 	G = G < 1 ? 1 : G > GRID ? GRID : G;
 	if ((P->nr + P->nf > 8 || P->fcast) && G > 4)
 		G = 4;

@@ -98,7 +98,8 @@ typedef struct pm_comp_stats {
 	int polys;       /* polygons with area in the cube */
 	int groups;      /* sheets and lone polygons they make (compensate.c, groups()) */
 	int sampled;     /* of the polygons, given sample points (something can hide part of it) */
-	int cells;       /* their sample cells: G x G of a polygon's box, those inside it */
+	int cells;       /* their sample cells: of G x G over a polygon's box, those
+	                    inside it (one, its vertices' mean, where none is) */
 	int cast;        /* of those, with so many that may hide them that what x'
 	                    sees of them is found through a tree (pm_comp_cast_at) */
 	int fcast;       /* of the sampled, whose fates were found by rays
