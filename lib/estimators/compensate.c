@@ -90,10 +90,6 @@ _Static_assert(GRID * GRID <= 64 && GRID <= 16, "GRID too large for fates_hit()"
 #define FRONT_SCAN 64
 /* ... a polygon wholly in front of it. */
 #define FRONT (1 << 29)
-/* The polygons whose planes hold a photon that weights() keeps while it
- * scans for them, so that choosing among them (an edge, two triangles of
- * one quad) need not scan again; past this many it does. */
-#define PLANES_KEPT 8
 /* cast_closed()'s answers a polygon keeps: two bits a run. */
 #define CLOSED_KEPT 32
 /* From this many polygons in the cube, the candidates that may hide one
@@ -264,6 +260,8 @@ struct pm_comp_scratch {
 	int htcap;
 	int *gm;               /* groups that may hold one photon */
 	int gmcap;
+	int *held;             /* ... polygons whose planes hold it */
+	int heldcap;
 	int *gq;               /* the polygons of sheets not plain (cgroup) */
 	int gqcap;
 	int *mark;             /* per polygon: on the list being closed, or found
@@ -379,6 +377,7 @@ pm_comp_scratch_free(pm_comp_scratch *sc)
 	free(sc->gp);
 	free(sc->ht);
 	free(sc->gm);
+	free(sc->held);
 	free(sc->gq);
 	free(sc->mark);
 	free(sc->pgrp);
@@ -1220,6 +1219,7 @@ groups(pm_comp_scratch *sc, const uint32_t *patch, pm_dvec3 n)
 	    !pm_grow((void **)&sc->gr, &sc->grcap, 0, 3 * ng, sizeof *sc->gr) ||
 	    !pm_grow((void **)&sc->gp, &sc->gpcap, 0, 3 * ng, sizeof *sc->gp) ||
 	    !pm_grow((void **)&sc->gm, &sc->gmcap, 0, ng, sizeof *sc->gm) ||
+	    !pm_grow((void **)&sc->held, &sc->heldcap, 0, ng, sizeof *sc->held) ||
 	    !pm_grow((void **)&sc->mark, &sc->markcap, 0, ng, sizeof *sc->mark) ||
 	    !pm_grow((void **)&sc->t, &sc->tcap, 0, ng, sizeof *sc->t))
 		return 0;
@@ -2614,18 +2614,15 @@ weights(const pm_polyindex *pi, pm_vec3 x, pm_vec3 n,
 			continue;
 		}
 		/* A photon in the cube lies on one of its polygons: where only
-		 * one plane holds it, that one (no inside test needed). The
-		 * first few that do are kept for the choice below. */
-		int nplane = 0, held[PLANES_KEPT];
+		 * one plane holds it, that one (no inside test needed). */
+		int nplane = 0, *held = sc->held;
 		for (int k = 0; k < nm; k++) {
 			const cgroup *Gr = &sc->gr[sc->gm[k]];
 			for (int gi = Gr->p0; gi < Gr->p0 + Gr->np; gi++) {
 				const cpoly *P = &sc->g[sc->gp[gi]];
 				if (fabs(pm_ddot(P->N, r) - P->d) > eps)
 					continue;
-				if (nplane < PLANES_KEPT)
-					held[nplane] = sc->gp[gi];
-				nplane++;
+				held[nplane++] = sc->gp[gi];
 			}
 		}
 		if (nplane == 1)
@@ -2633,22 +2630,12 @@ weights(const pm_polyindex *pi, pm_vec3 x, pm_vec3 n,
 		/* Where several do (an edge; the same surface twice; the two
 		 * triangles of a mesh's quad), the lowest polygon number that
 		 * faces it and holds it: the one the target area keeps of a
-		 * surface given twice. Only those whose planes hold it can. */
-		for (int t = 0; nplane > 1 && nplane <= PLANES_KEPT && t < nplane; t++) {
+		 * surface given twice. Those are all among the planes found. */
+		for (int t = 0; nplane > 1 && t < nplane; t++) {
 			const cpoly *P = &sc->g[held[t]];
 			if (fabs(pm_ddot(P->N, r) - P->d) <= eps && pm_ddot(psi, P->Ne) > 0 &&
 			    (own < 0 || P->g < sc->g[own].g) && inside(sc, P, r, eps, 1))
 				own = held[t];
-		}
-		for (int k = 0; k < nm && nplane > PLANES_KEPT; k++) {
-			const cgroup *Gr = &sc->gr[sc->gm[k]];
-			for (int gi = Gr->p0; gi < Gr->p0 + Gr->np; gi++) {
-				int a = sc->gp[gi];
-				const cpoly *P = &sc->g[a];
-				if (fabs(pm_ddot(P->N, r) - P->d) <= eps && pm_ddot(psi, P->Ne) > 0 &&
-				    (own < 0 || P->g < sc->g[own].g) && inside(sc, P, r, eps, 1))
-					own = a;
-			}
 		}
 		if (own < 0) {
 			z.hidden++;

@@ -1966,12 +1966,11 @@ TEST(convex_sheets_need_no_fates)
 	tm_free(&m);
 }
 
-static pm_vec3 tile32(double u, double v) { return pm_v3((float)(u - 0.5), (float)(v - 0.5), 0); }
-
-/* Sample cells resolve the cube, not the mesh: a floor of 32 x 32 tiles,
- * each about a thousandth of the cube's face, and a wall across it at
- * y = 0.2 (off the tiles' rows) that hides the floor beyond it from x'
- * and may meet backward rays from the floor in front. Photons arriving
+/* Sample cells resolve the cube, not the mesh: a floor of tiles 1/32
+ * across (flat2() at 64 x 64), each about a thousandth of the cube's
+ * face, and a wall across it at y = 0.2 (off the tiles' rows) that hides
+ * the floor beyond it from x' and may meet backward rays from the floor
+ * in front. Photons arriving
  * straight down meet nothing, so their target area is the floor x' sees:
  * the cube's width times the depth up to the wall, exactly. The tiles are
  * sampled (every one has fates), one cell each, and the area must be the
@@ -1990,7 +1989,7 @@ TEST(tiny_tiles_one_cell_each)
 	const double h = 0.45, wall = 0.2, row = 1.0 / 32;
 	const pm_vec3 x = pm_v3(0.013f, -0.021f, 0);
 
-	tm_grid(&m, 32, 32, tile32);
+	tm_grid(&m, 64, 64, flat2);
 	/* The wall: one more quad of the mesh, facing x (-y), its bottom
 	 * edge on the floor, higher than the cube. */
 	uint32_t nv = m.s.nverts, q = m.s.npolys;
