@@ -2415,7 +2415,9 @@ weights(const pm_polyindex *pi, pm_vec3 x, pm_vec3 n,
 	/* L-infinity distances, exact in double (a difference of floats). The
 	 * loop has no branches: which axis is largest is a coin toss per
 	 * photon, and as branches these maxima were a fifth of this function's
-	 * time on the room. The sum is finite exactly where every axis is. */
+	 * time on the room. The sum is finite exactly where every axis is: a
+	 * photon with a coordinate not finite is not used (dmax() passed over
+	 * a NaN axis; no map holds one: photonfile.c refuses it). */
 	for (int i = 0; i < m; i++) {
 		double ax = fabs((double)pos[i].x - xd.x), ay = fabs((double)pos[i].y - xd.y),
 		       az = fabs((double)pos[i].z - xd.z);
