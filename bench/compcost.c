@@ -10,7 +10,9 @@
  * estimate, classical and compensated, their ratio, a checksum of the
  * compensated estimates (the same for any change that computes the same
  * thing), and per bin of polygons in the cube (1, 2, 3-4, 5-8, ...) the
- * estimates there and their mean time. -o writes one line per estimate:
+ * estimates there, their mean time (and the classical one's at the same
+ * points), and the bin's share of the time the compensated estimates
+ * take over the classical ones. -o writes one line per estimate:
  * polygons in its cube, those sampled, microseconds (compensated,
  * classical), the compensated RGB, the groups (sheets and lone polygons)
  * and the polygons whose fates went by rays (pm_comp_stats), for plots
@@ -226,18 +228,25 @@ main(int argc, char **argv)
 	printf("us_classical\t%.3f\nus_compensated\t%.3f\ncompensated_over_classical\t%.3f\n",
 	       ucl, uco, uco / ucl);
 	printf("checksum\t%016llx\n", (unsigned long long)hsh);
+	/* Per bin also the classical estimates' mean at the same points, and
+	 * the bin's share of what the compensated ones cost over them: where
+	 * the price comes from, which the means alone hide (many cheap
+	 * estimates can outweigh a few dear ones). */
 	long cnt[NBIN] = {0};
-	double sum[NBIN] = {0}, mx[NBIN] = {0};
+	double sum[NBIN] = {0}, mx[NBIN] = {0}, scl[NBIN] = {0}, extra = 0;
 	for (long j = 0; j < ne; j++) {
 		int b = bin_of(polys[j]);
 		cnt[b]++;
 		sum[b] += tco[j];
+		scl[b] += tcl[j];
+		extra += tco[j] - tcl[j];
 		mx[b] = tco[j] > mx[b] ? tco[j] : mx[b];
 	}
 	for (int b = 0; b < NBIN; b++)
 		if (cnt[b])
-			printf("polys_le_%d\t%ld estimates, mean %.2f us, max %.1f us\n", 1 << b, cnt[b],
-			       1e6 * sum[b] / cnt[b], 1e6 * mx[b]);
+			printf("polys_le_%d\t%ld estimates, mean %.2f us (classical %.2f), max %.1f us, "
+			       "%.1f %% of the extra\n", 1 << b, cnt[b], 1e6 * sum[b] / cnt[b],
+			       1e6 * scl[b] / cnt[b], 1e6 * mx[b], extra > 0 ? 100 * (sum[b] - scl[b]) / extra : 0);
 	if (out) {
 		FILE *f = fopen(out, "w");
 		if (!f)
