@@ -1035,6 +1035,59 @@ TEST(fewer_photons_than_k)
 	tp_free(&p);
 }
 
+/* Photons whose positions are not finite (no photon file holds one; the
+ * reader refuses them, but pm_comp_weights is open to any caller) are not
+ * used, and change nothing for the others: their weights are those of the
+ * same call without them, bit for bit. A NaN axis beside a far finite one
+ * once counted as that far distance and set the cube. */
+TEST(photons_not_finite_unused)
+{
+	tscene t;
+	tphotons p = {0};
+	pm_rng r = pm_rng_seed(12, 0);
+	ts_init(&t);
+	int f = ts_rect(&t, ts_object(&t, 0, 0), pm_v3(-1, -1, 0), pm_v3(2, 0, 0), pm_v3(0, 2, 0));
+	pm_polyindex *pi = index_of(&t);
+	pm_comp_scratch *sc = pm_comp_scratch_new(K);
+	pm_vec3 x = pm_v3(0.1f, -0.05f, 0), pos[K], dir[K], gpos[K], gdir[K];
+	double w[K], gw[K];
+	int good = 30, n = 0, g = 0;
+	p.flux = 1e-3;
+	/* Within 0.25 of x: a cube far smaller than the bad photons' 0.9. */
+	for (int i = 0; i < good; i++)
+		tp_add(&p, pm_v3((float)(x.x + 0.5 * rnd(&r) - 0.25), (float)(x.y + 0.5 * rnd(&r) - 0.25), 0),
+		       unit(0.3, 0.2, 0.9), f);
+	const pm_vec3 bad[4] = {{NAN, 0.9f, 0}, {0.2f, INFINITY, 0}, {-0.9f, 0, NAN}, {-INFINITY, NAN, 0.5f}};
+	for (int i = 0; i < good; i++) {
+		if (i % 8 == 3 && n - g < 4) {
+			pos[n] = bad[n - g];
+			dir[n++] = unit(0.3, 0.2, 0.9);
+		}
+		gpos[g] = pos[n] = p.pos[i];
+		gdir[g++] = dir[n++] = p.dir[i];
+	}
+	CHECKF(sc && n == good + 4 && g == good, "n=%d g=%d", n, g);
+	pm_comp_stats st, gst;
+	pm_comp_weights(pi, x, UP, pos, dir, n, 0, sc, w, &st);
+	pm_comp_weights(pi, x, UP, gpos, gdir, g, 0, sc, gw, &gst);
+	CHECKF(st.h == gst.h && st.front == gst.front, "h %g vs %g, front %d vs %d", st.h, gst.h, st.front,
+	       gst.front);
+	int same = 0, zero = 0, used = 0;
+	for (int i = 0, j = 0; i < n; i++) {
+		if (!(isfinite(pos[i].x) && isfinite(pos[i].y) && isfinite(pos[i].z))) {
+			zero += w[i] == 0;
+			continue;
+		}
+		same += memcmp(&w[i], &gw[j], sizeof w[i]) == 0;
+		used += gw[j++] > 0;
+	}
+	CHECKF(zero == 4 && same == good && used > good / 2, "bad at 0: %d of 4, same: %d of %d, used %d", zero,
+	       same, good, used);
+	pm_comp_scratch_free(sc);
+	pm_polyindex_free(pi);
+	tp_free(&p);
+}
+
 /* ---- invariance ---- */
 
 /* The concave edge moved by 1e4 and scaled by 1e-3 and 1e3 (flux scaled by
@@ -2074,6 +2127,7 @@ main(void)
 	RUN(no_target_area_skipped);
 	RUN(grazing_photons);
 	RUN(fewer_photons_than_k);
+	RUN(photons_not_finite_unused);
 	RUN(translation_and_scale);
 	RUN(polyindex_matches_brute_force);
 	RUN(full_estimate_matches_core);
