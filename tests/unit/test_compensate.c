@@ -93,6 +93,15 @@ ts_rect(tscene *t, int obj, pm_vec3 o, pm_vec3 u, pm_vec3 v)
 	return t->nrect++;
 }
 
+/* A new scene of one floor, the open quad z = 0, |x|, |y| <= 1, facing up;
+ * returns its rectangle. */
+static int
+ts_floor(tscene *t)
+{
+	ts_init(t);
+	return ts_rect(t, ts_object(t, 0, 0), pm_v3(-1, -1, 0), pm_v3(2, 0, 0), pm_v3(0, 2, 0));
+}
+
 /* ---- photons ---- */
 
 typedef struct tphotons {
@@ -340,8 +349,7 @@ TEST(floor_shrunk_cube)
 	tscene t;
 	tphotons p = {0};
 	pm_rng r = pm_rng_seed(1, 7);
-	ts_init(&t);
-	int f = ts_rect(&t, ts_object(&t, 0, 0), pm_v3(-1, -1, 0), pm_v3(2, 0, 0), pm_v3(0, 2, 0));
+	int f = ts_floor(&t);
 	p.flux = 1e-3;
 	tp_rect(&p, &t, f, 20000, unit(0.3, 0.2, 0.9), &r, 0);
 	pm_polyindex *pi = index_of(&t);
@@ -1013,8 +1021,7 @@ TEST(fewer_photons_than_k)
 	tscene t;
 	tphotons p = {0};
 	pm_rng r = pm_rng_seed(10, 0);
-	ts_init(&t);
-	int f = ts_rect(&t, ts_object(&t, 0, 0), pm_v3(-1, -1, 0), pm_v3(2, 0, 0), pm_v3(0, 2, 0));
+	int f = ts_floor(&t);
 	pm_polyindex *pi = index_of(&t);
 	pm_vec3 x = pm_v3(0.05f, 0, 0);
 	est e = comp(pi, &p, x, UP, K);
@@ -1045,8 +1052,7 @@ TEST(photons_not_finite_unused)
 	tscene t;
 	tphotons p = {0};
 	pm_rng r = pm_rng_seed(12, 0);
-	ts_init(&t);
-	int f = ts_rect(&t, ts_object(&t, 0, 0), pm_v3(-1, -1, 0), pm_v3(2, 0, 0), pm_v3(0, 2, 0));
+	int f = ts_floor(&t);
 	pm_polyindex *pi = index_of(&t);
 	pm_comp_scratch *sc = pm_comp_scratch_new(K);
 	pm_vec3 x = pm_v3(0.1f, -0.05f, 0), pos[K], dir[K], gpos[K], gdir[K];
@@ -1435,8 +1441,7 @@ TEST(tessellated_floor_is_one_quad)
 	tphotons p = {0};
 	pm_rng r = pm_rng_seed(9, 1);
 	static double w1[4096], w2[4096];
-	ts_init(&t);
-	int f = ts_rect(&t, ts_object(&t, 0, 0), pm_v3(-1, -1, 0), pm_v3(2, 0, 0), pm_v3(0, 2, 0));
+	int f = ts_floor(&t);
 	tm_grid(&m, 32, 32, flat2);
 	p.flux = 1e-3;
 	for (int i = 0; i < 4000; i++)
