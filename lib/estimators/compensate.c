@@ -2636,11 +2636,11 @@ weights(const pm_polyindex *pi, pm_vec3 x, pm_vec3 n,
 		/* Where several do (an edge; the same surface twice; the two
 		 * triangles of a mesh's quad), the lowest polygon number that
 		 * faces it and holds it: the one the target area keeps of a
-		 * surface given twice. Those are all among the planes found. */
+		 * surface given twice. Those are all among the planes found,
+		 * whose test is not asked again. */
 		for (int t = 0; nplane > 1 && t < nplane; t++) {
 			const cpoly *P = &sc->g[held[t]];
-			if (fabs(pm_ddot(P->N, r) - P->d) <= eps && pm_ddot(psi, P->Ne) > 0 &&
-			    (own < 0 || P->g < sc->g[own].g) && inside(sc, P, r, eps, 1))
+			if (pm_ddot(psi, P->Ne) > 0 && (own < 0 || P->g < sc->g[own].g) && inside(sc, P, r, eps, 1))
 				own = held[t];
 		}
 		if (own < 0) {
