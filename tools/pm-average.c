@@ -41,7 +41,7 @@ static const tool average = {
 static const char *const agreed[] = {
 	"pm.scene_hash", "pm.estimator", "pm.k", "pm.spp", "pm.photons", "pm.time",
 	"pm.light_samples", "pm.estimates", "pm.gather", "pm.consistent", "pm.light_paths",
-	"pm.density",
+	"pm.density", "pm.past_glossy",
 };
 enum { NAGREED = sizeof agreed / sizeof agreed[0] };
 

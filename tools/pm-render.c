@@ -38,7 +38,7 @@ make_usage(void)
 	}
 	snprintf(usage, sizeof usage,
 	         "pm-render SCENE [MAP|-] [-e %s] [-k K] [--classical-norm k|k-1] [-p SAMPLES] "
-	         "[-l N] [--estimates pixel|sample] [-g RAYS [--caustic CMAP] [--irradiance EVERY] [--guided]] [--guide GMAP] "
+	         "[-l N] [--estimates pixel|sample] [--past-glossy N] [-g RAYS [--caustic CMAP] [--irradiance EVERY] [--guided]] [--guide GMAP] "
 	         "[-P I/N] [--consistent ALPHA] [-s SEED] [-t TIME] [-j THREADS] [-q] [--force] -o OUT.exr",
 	         names);
 	n = (size_t)snprintf(est_help, sizeof est_help, "estimator:");
@@ -49,7 +49,7 @@ make_usage(void)
 }
 
 enum { FORCE = OPT_LONG, MAX_SAMPLES, CLASSICAL_NORM, ESTIMATES, CAUSTIC, IRRADIANCE, GUIDED,
-       CONSISTENT, GUIDE };
+       CONSISTENT, GUIDE, PAST_GLOSSY };
 
 static const opt opts[] = {
 	{ 'e', "estimator", "EST", est_help, est_default, 0 },
@@ -87,6 +87,11 @@ static const opt opts[] = {
 	  "pixel and polygon seen (pixel; likewise past a chain of mirrors and glass), or at "
 	  "every camera sample (sample, up to -p times the cost); the expected image is the "
 	  "same", "pixel", 0 },
+	{ PAST_GLOSSY, "past-glossy", "N", "with --estimates pixel, the photon estimate where a "
+	  "camera path lands past a bounce that shares nothing (a strong glossy lobe, a "
+	  "textured mirror): taken at one camera sample in N of each pixel, the others' "
+	  "weight given to those taken; the expected image is the same; 1 takes it at every "
+	  "sample", "4", 0 },
 	{ MAX_SAMPLES, "max-samples", "N", "refuse -p above N, against typos", "65536", 0 },
 	{ 'P', "pass", "I/N", "pass I of N: seed and time derived from I and N, as pm-shoot -P "
 	  "does (see pm-render(1)); -s and -t override them", "no pass", 0 },
@@ -163,7 +168,7 @@ int
 main(int argc, char **argv)
 {
 	pm_render_opts o = {.estimator = pm_estimator_find(est_default), .k = 50, .spp = 16,
-	                    .estimate_once = 1};
+	                    .estimate_once = 1, .past_glossy = 4};
 	const char *out = NULL, *mapname = NULL, *cname = NULL, *gname = NULL;
 	int gather_rays = 0, irr_every = 4, guided = 0;
 	pm_gather_opts go = {0};
@@ -215,6 +220,7 @@ main(int argc, char **argv)
 			else
 				usage_err(usage, "--estimates: '%s' is neither pixel nor sample", optarg);
 			break;
+		case PAST_GLOSSY: o.past_glossy = (int)parse_int(optarg, 1, 1 << 30, "--past-glossy", usage); break;
 		case 'p': o.spp = (int)parse_int(optarg, 1, 1 << 30, "-p", usage); break;
 		case 'P':
 			if (pm_pass_parse(optarg, &pass_i, &pass_n, &err) != 0)
@@ -351,6 +357,8 @@ main(int argc, char **argv)
 	snprintf(buf, sizeof buf, "%d", o.light_samples);
 	setattr(&img, "pm.light_samples", buf);
 	setattr(&img, "pm.estimates", o.estimate_once ? "pixel" : "sample");
+	snprintf(buf, sizeof buf, "%d", o.estimate_once && o.estimator->estimate ? o.past_glossy : 1);
+	setattr(&img, "pm.past_glossy", buf);
 	snprintf(buf, sizeof buf, "%" PRIu64, map.h.count);
 	setattr(&img, "pm.photons", buf);
 	snprintf(buf, sizeof buf, "%" PRIu64, map.h.emitted);

@@ -32,6 +32,11 @@ typedef struct pm_render_opts {
 	                     * (the photon-surface hit); 0 means 1 */
 	int estimate_once;  /* 1: a pixel's first-hit photon estimate is taken
 	                     * once per polygon it sees, not per camera sample */
+	int past_glossy;    /* with estimate_once, past a bounce that shares
+	                     * nothing (a strong glossy lobe, a textured
+	                     * mirror) the estimate is taken at a pixel's camera
+	                     * samples 0, N, 2N, ... only, weighted spp over
+	                     * their number; 0 or 1: at every one */
 	uint64_t seed;
 	int max_depth;      /* longest camera path; 0 means 64 */
 	const pm_gather_opts *gather;  /* if set, final gathering at the photon

@@ -6,7 +6,10 @@
 # differ from --estimates sample (same seed, same map, so the same samples:
 # only the sharing differs) while keeping its expected value, measured over
 # passes; a mirror with a textured reflectance shares nothing (its weight
-# varies from point to point), so there the two modes give the same bits.
+# varies from point to point), so there the two modes give the same bits
+# with --past-glossy 1, while by default (4) the estimate past it is taken
+# on one camera sample in four, weighted four times: other bits, the same
+# expected value.
 . "$PM_TOP/tests/lib.sh"
 
 # scene NAME REFLECT: a room lit from its ceiling, the camera looking at a
@@ -30,8 +33,9 @@ for s in plain tex; do
 	pm-shoot -q -n 60000 -s 1 $s.pms | pm-build -o $s.pm
 	for i in 1 2 3 4 5 6 7 8; do
 		for m in pixel sample; do
-			pm-render -q -s $i --estimates $m $s.pms $s.pm -o $s-$m-$i.exr
+			pm-render -q -s $i --estimates $m --past-glossy 1 $s.pms $s.pm -o $s-$m-$i.exr
 		done
+		pm-render -q -s $i $s.pms $s.pm -o $s-past4-$i.exr
 	done
 done
 pm-diff -l specular plain-pixel-1.exr plain-sample-1.exr >plain1.txt
@@ -45,6 +49,20 @@ check "a textured mirror's are not (the modes give the same bits)" \
 for m in pixel sample; do
 	pm-average -q $(for i in 1 2 3 4 5 6 7 8; do echo plain-$m-$i.exr; done) -o plain-$m.exr
 done
+pm-average -q $(for i in 1 2 3 4 5 6 7 8; do echo tex-sample-$i.exr; done) -o tex-sample.exr
+pm-average -q $(for i in 1 2 3 4 5 6 7 8; do echo tex-past4-$i.exr; done) -o tex-past4.exr
+pm-diff -l specular tex-past4-1.exr tex-sample-1.exr >tex4.txt
+rm_tex4=$(kv tex4.txt rmse)
+echo "# specular layer, textured mirror, --past-glossy 4 against sample: rmse $rm_tex4"
+check "past a textured mirror, --past-glossy 4 takes fewer estimates (the images differ)" \
+	awk -v a="$rm_tex4" 'BEGIN { exit !(a > 0) }'
+check "--past-glossy 4 is recorded in the image" \
+	test "$("$PM_BIN/../tests/tools/exrattr" tex-past4-1.exr pm.past_glossy)" = 4
+pm-diff -l specular tex-past4.exr tex-sample.exr >mean4.txt
+a=$(kv mean4.txt mean_a) b=$(kv mean4.txt mean_b)
+echo "# specular layer mean over 8 passes, textured mirror: --past-glossy 4 $a, every sample $b"
+num_near "one sample in four, weighted, keeps the expected value (within 1 %)" \
+	"$(awk -v a="$a" -v b="$b" 'BEGIN { print a / b }')" 1 0.01
 pm-diff -l specular plain-pixel.exr plain-sample.exr >mean.txt
 a=$(kv mean.txt mean_a) b=$(kv mean.txt mean_b)
 echo "# specular layer mean over 8 passes: pixel $a, sample $b"

@@ -1,7 +1,10 @@
 /* test_render.c — the view pass's sharing of first-hit estimates within a
  * pixel (lib/passes/render.c, --estimates pixel), counted through an
  * estimator that only counts: how many estimates a picture of two patches
- * takes. */
+ * takes; and past a textured mirror, which shares nothing, the estimate on
+ * one camera sample in N (--past-glossy), weighted so that the picture is
+ * the same. */
+#include <math.h>
 #include <stdatomic.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -23,7 +26,7 @@ counting(const pm_est_in *in, void *sc, pm_vec3 x, pm_vec3 n, pm_vec3 ns, pm_vec
 	info->disc = 1e3f;
 	info->size = 1e3f;
 	info->nphotons = 1;
-	return pm_v3(0, 0, 0);
+	return pm_v3(1, 1, 1);
 }
 
 static const pm_estimator count_row = {"count", "counts its calls", 0, NULL, NULL, counting, NULL};
@@ -38,14 +41,18 @@ static const char scene[] =
 	"quad white -5 -5 0  5 -5 0  5 0.109375 0  -5 0.109375 0\n"
 	"quad white -5 0.109375 0  5 0.109375 0  5 5 0  -5 5 0\n";
 
+/* The specular layer's least and greatest value over the image, where
+ * render_count() was asked for them. */
+static float spec_lo, spec_hi;
+
 static long
-render_count(const pm_scene *s, int once, int spp)
+render_count_past(const pm_scene *s, int once, int spp, int past)
 {
 	pm_frame f;
 	pm_image img;
 	pm_error err = {""};
 	pm_render_opts o = {.estimator = &count_row, .k = 50, .spp = spp, .light_samples = 1,
-	                    .estimate_once = once, .seed = 7};
+	                    .estimate_once = once, .past_glossy = past, .seed = 7};
 
 	atomic_store(&made, 0);
 	CHECKF(pm_frame_build(&f, s, 0, 0, &err) == 0, "%s", err.msg);
@@ -55,23 +62,47 @@ render_count(const pm_scene *s, int once, int spp)
 	pm_frame_free(&f);
 	if (err.msg[0])
 		return -1;
+	size_t npx = (size_t)img.width * img.height;
+	spec_lo = INFINITY;
+	spec_hi = -INFINITY;
+	for (size_t i = 0; i < npx; i++)
+		for (int c = 9; c < 12; c++) {
+			float v = img.px[(size_t)c * npx + i];
+			spec_lo = v < spec_lo ? v : spec_lo;
+			spec_hi = v > spec_hi ? v : spec_hi;
+		}
 	pm_image_free(&img);
 	return atomic_load(&made);
+}
+
+static long
+render_count(const pm_scene *s, int once, int spp)
+{
+	return render_count_past(s, once, spp, 1);
+}
+
+/* Writes text to file name and loads it into s: 0, or -1 after a check
+ * failed. */
+static int
+load(pm_scene *s, const char *name, const char *text)
+{
+	pm_error err = {""};
+	FILE *fp = fopen(name, "wb");
+
+	CHECK(fp != NULL);
+	if (!fp)
+		return -1;
+	fputs(text, fp);
+	fclose(fp);
+	CHECKF(pm_scene_load(s, name, &err) == 0, "%s", err.msg);
+	return err.msg[0] ? -1 : 0;
 }
 
 TEST(every_patch_of_a_pixel_gives_its_word_to_the_next)
 {
 	pm_scene s;
-	pm_error err = {""};
-	FILE *fp = fopen("render.pms", "wb");
 
-	CHECK(fp != NULL);
-	if (!fp)
-		return;
-	fputs(scene, fp);
-	fclose(fp);
-	CHECKF(pm_scene_load(&s, "render.pms", &err) == 0, "%s", err.msg);
-	if (err.msg[0])
+	if (load(&s, "render.pms", scene) != 0)
 		return;
 	/* A row on one patch: its first pixel has no word from a previous
 	 * one, so its first estimate is used once and the next one reused
@@ -89,9 +120,49 @@ TEST(every_patch_of_a_pixel_gives_its_word_to_the_next)
 	pm_scene_free(&s);
 }
 
+/* A mirror whose reflectance is a texture (a checker of one grey, 0.5)
+ * fills the view and the floor of a closed box; every camera ray reflects
+ * off it to the box's ceiling, where its estimate is taken. The lamp is
+ * under the mirror, which hides it from the ceiling, so the specular layer
+ * is 0.5 times the estimate (1) and nothing else. */
+static const char mirror_scene[] =
+	"camera eye 0 0 10 look 0 0 0 up 0 1 0 fov 10 size 8 8\n"
+	"pointlight 0 0 -0.5 power 10 10 10\n"
+	"texture grey checker 0.5 0.5 0.5  0.5 0.5 0.5 scale 4 4\n"
+	"material white diffuse albedo 0.5 0.5 0.5\n"
+	"material m mirror reflect tex grey\n"
+	"box white -6 -6 -1  6 6 12 inward\n"
+	"quad m -6 -6 0  6 -6 0  6 6 0  -6 6 0\n";
+
+TEST(past_a_mirror_that_shares_nothing_one_sample_in_n)
+{
+	pm_scene s;
+
+	if (load(&s, "mirror.pms", mirror_scene) != 0)
+		return;
+	/* Every sample at 1; samples 0, 4, ... 60 at 4; 0 and 4 of 5 at 4,
+	 * each weighted 5 / 2; 0 of 3 at 4 (one sample, weighted 3). */
+	static const struct { int spp, past; long want; } c[] = {
+		{64, 1, 64}, {64, 4, 16}, {64, 16, 4}, {5, 4, 2}, {3, 4, 1}, {1, 4, 1},
+	};
+	for (size_t i = 0; i < sizeof c / sizeof c[0]; i++) {
+		long got = render_count_past(&s, 1, c[i].spp, c[i].past);
+		CHECKF(got == 64 * c[i].want, "-p %d --past-glossy %d: %ld estimates, want %ld",
+		       c[i].spp, c[i].past, got, 64 * c[i].want);
+		CHECKF(fabsf(spec_lo - 0.5f) < 1e-6f && fabsf(spec_hi - 0.5f) < 1e-6f,
+		       "-p %d --past-glossy %d: specular layer %.9g to %.9g, want 0.5", c[i].spp,
+		       c[i].past, spec_lo, spec_hi);
+	}
+	/* --estimates sample: every sample, whatever N */
+	long got = render_count_past(&s, 0, 64, 4);
+	CHECKF(got == 64 * 64, "--estimates sample: %ld estimates, want %d", got, 64 * 64);
+	pm_scene_free(&s);
+}
+
 int
 main(void)
 {
 	RUN(every_patch_of_a_pixel_gives_its_word_to_the_next);
+	RUN(past_a_mirror_that_shares_nothing_one_sample_in_n);
 	return check_done();
 }
