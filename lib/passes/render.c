@@ -73,9 +73,10 @@ typedef struct ctx {
  * then barely varies within the pixel, while a support smaller than the
  * footprint (few photons per estimate, many per pass) would lose the
  * averaging of the samples' estimates, which are then nearly independent.
- * That test is made on the previous pixel of the row, on the same patch,
- * or else on the patch's first estimate in the pixel, which then is used
- * once and the next one there reused: made on the estimate it reuses, it
+ * That test is made on the previous pixel of the row, on the same patch
+ * (on a patch it did not see: a yes on any patch it did), or else on the
+ * patch's first estimate in the pixel, which then is used once and the
+ * next one there reused: made on the estimate it reuses, it
  * kept dim estimates (wide support) and diluted bright ones (narrow
  * support), and a caustic read 10 % dark. */
 #define PX_SLOTS 4
@@ -112,8 +113,9 @@ typedef struct pxcache {
 	int ns;
 	pxslot d[PX_SLOTS];   /* the same past specular chains */
 	int nd;
-	int nallow;           /* the previous pixel's word: the patches whose */
-	uint32_t allow[PX_SLOTS];  /* first estimate here is reused */
+	int nword;            /* the previous pixel's word: the patches it */
+	uint32_t wkey[PX_SLOTS];   /* estimated on, and for each whether its */
+	unsigned char wok[PX_SLOTS];  /* first estimate here is reused */
 	/* The guide (opts.guide) at the pixel's first strong glossy hit,
 	 * reused by its later samples on the same polygon: any histogram
 	 * leaves the mean alone, and one a few millimetres away is as good. */
@@ -203,10 +205,19 @@ first_estimate(const ctx *c, void *sc, const pm_hit *h, pm_vec3 n, pm_vec3 ns, p
 		sl->key = key;
 		sl->valid = 0;
 		sl->first_ok = ok;
-		sl->ok = 0;
-		for (int i = 0; i < pc->nallow && !sl->ok; i++)
-			sl->ok = pc->allow[i] == key;
-		/* No word from the previous pixel on this patch: this estimate
+		/* A patch the previous pixel did not see (an edge entering
+		 * the row, a small patch) takes its word on those it did: the
+		 * photons' spacing there is the same, and where it said yes
+		 * on one (thin: 5 % fewer estimates, at edges, the dear ones).
+		 * Every word is made before this pixel's samples, so the
+		 * reused estimate's point is still uniform over the footprint. */
+		int said = -1, any = 0;
+		for (int i = 0; i < pc->nword; i++) {
+			said = pc->wkey[i] == key ? pc->wok[i] : said;
+			any |= pc->wok[i];
+		}
+		sl->ok = said >= 0 ? said : any;
+		/* A no from the previous pixel, or none at all: this estimate
 		 * decides for the next one here, which is reused, and is
 		 * itself used once. */
 		if (!sl->ok) {
@@ -435,8 +446,9 @@ pm_render(const pm_frame *f, const pm_photons *map, const pm_render_opts *o,
 			fail = 1;
 		#pragma omp for schedule(dynamic, 1)
 		for (int y = 0; y < H; y++) {
-			int nallow = 0;
-			uint32_t allow[PX_SLOTS] = {0};
+			int nword = 0;
+			uint32_t wkey[PX_SLOTS] = {0};
+			unsigned char wok[PX_SLOTS] = {0};
 			if (fail)
 				continue;
 			for (int x = 0; x < W; x++) {
@@ -450,8 +462,9 @@ pm_render(const pm_frame *f, const pm_photons *map, const pm_render_opts *o,
 				 * only once built (gvalid). */
 				pxcache pc;
 				pc.ns = pc.nd = pc.gvalid = 0;
-				pc.nallow = nallow;
-				memcpy(pc.allow, allow, sizeof allow);
+				pc.nword = nword;
+				memcpy(pc.wkey, wkey, sizeof wkey);
+				memcpy(pc.wok, wok, sizeof wok);
 				for (int k = 0; k < o->spp; k++) {
 					sample smp;
 					pc.k = k;
@@ -473,10 +486,11 @@ pm_render(const pm_frame *f, const pm_photons *map, const pm_render_opts *o,
 				 * only the first: along an edge each pixel sees
 				 * the same two (thin: 4 % fewer estimates, the
 				 * dear ones of several polygons). */
-				nallow = 0;
-				for (int j = 0; j < pc.ns; j++)
-					if (pc.s[j].first_ok)
-						allow[nallow++] = pc.s[j].key;
+				nword = pc.ns;
+				for (int j = 0; j < pc.ns; j++) {
+					wkey[j] = pc.s[j].key;
+					wok[j] = (unsigned char)pc.s[j].first_ok;
+				}
 				float inv = 1.0f / (float)o->spp;
 				pm_vec3 tot = pm_scale(pm_add(dsum, pm_add(isum, ssum)), inv);
 				float v[PM_RENDER_NCHAN] = {

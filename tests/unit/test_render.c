@@ -31,11 +31,14 @@ counting(const pm_est_in *in, void *sc, pm_vec3 x, pm_vec3 n, pm_vec3 ns, pm_vec
 
 static const pm_estimator count_row = {"count", "counts its calls", 0, NULL, NULL, counting, NULL};
 
+/* Every scene here: eight by eight pixels looking down -z at the origin. */
+#define CAMERA "camera eye 0 0 10 look 0 0 0 up 0 1 0 fov 10 size 8 8\n"
+
 /* Eight by eight pixels of two coplanar quads, each its own patch, meeting
  * along a line through the middle of row 3 (the camera sees y from -0.875
  * to 0.875, a row 0.21875 high). */
 static const char scene[] =
-	"camera eye 0 0 10 look 0 0 0 up 0 1 0 fov 10 size 8 8\n"
+	CAMERA
 	"pointlight 0 0 5 power 10 10 10\n"
 	"material white diffuse albedo 0.5 0.5 0.5\n"
 	"quad white -5 -5 0  5 -5 0  5 0.109375 0  -5 0.109375 0\n"
@@ -120,13 +123,38 @@ TEST(every_patch_of_a_pixel_gives_its_word_to_the_next)
 	pm_scene_free(&s);
 }
 
+/* The same two patches meeting along a column: x = 0.109375 runs
+ * through the middle of column 4. */
+static const char column_scene[] =
+	CAMERA
+	"pointlight 0 0 5 power 10 10 10\n"
+	"material white diffuse albedo 0.5 0.5 0.5\n"
+	"quad white -5 -5 0  0.109375 -5 0  0.109375 5 0  -5 5 0\n"
+	"quad white 0.109375 -5 0  5 -5 0  5 5 0  0.109375 5 0\n";
+
+TEST(a_patch_new_to_the_row_takes_the_word_on_the_others)
+{
+	pm_scene s;
+
+	if (load(&s, "column.pms", column_scene) != 0)
+		return;
+	/* Each row: its first pixel decides and reuses the next (2),
+	 * columns 1-3 reuse (1 each); column 4 sees the right patch for the
+	 * first time, which the previous pixel's yes on the left one lets
+	 * it reuse at once (1 + 1, not 1 + 2); columns 5-7 reuse (1 each). */
+	long want = 8 * (2 + 3 * 1 + 2 + 3 * 1);
+	long got = render_count(&s, 1, 64);
+	CHECKF(got == want, "%ld estimates, want %ld", got, want);
+	pm_scene_free(&s);
+}
+
 /* A mirror whose reflectance is a texture (a checker of one grey, 0.5)
  * fills the view and the floor of a closed box; every camera ray reflects
  * off it to the box's ceiling, where its estimate is taken. The lamp is
  * under the mirror, which hides it from the ceiling, so the specular layer
  * is 0.5 times the estimate (1) and nothing else. */
 static const char mirror_scene[] =
-	"camera eye 0 0 10 look 0 0 0 up 0 1 0 fov 10 size 8 8\n"
+	CAMERA
 	"pointlight 0 0 -0.5 power 10 10 10\n"
 	"texture grey checker 0.5 0.5 0.5  0.5 0.5 0.5 scale 4 4\n"
 	"material white diffuse albedo 0.5 0.5 0.5\n"
@@ -163,6 +191,7 @@ int
 main(void)
 {
 	RUN(every_patch_of_a_pixel_gives_its_word_to_the_next);
+	RUN(a_patch_new_to_the_row_takes_the_word_on_the_others);
 	RUN(past_a_mirror_that_shares_nothing_one_sample_in_n);
 	return check_done();
 }
