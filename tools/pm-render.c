@@ -91,7 +91,7 @@ static const opt opts[] = {
 	  "camera path lands past a bounce that shares nothing (a strong glossy lobe, a "
 	  "textured mirror): taken at one camera sample in N of each pixel, the others' "
 	  "weight given to those taken; the expected image is the same; 1 takes it at every "
-	  "sample", "4", 0 },
+	  "sample; a gather (-g) is not affected", "4", 0 },
 	{ MAX_SAMPLES, "max-samples", "N", "refuse -p above N, against typos", "65536", 0 },
 	{ 'P', "pass", "I/N", "pass I of N: seed and time derived from I and N, as pm-shoot -P "
 	  "does (see pm-render(1)); -s and -t override them", "no pass", 0 },
