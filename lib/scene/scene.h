@@ -150,4 +150,15 @@ static inline int pm_mat_is_photon_surface(const pm_material *m)
 	return !m->strong;
 }
 
+/* 1 if m reflects nothing (an emitter's usual black, a black paint): its
+ * BSDF is 0 for every pair of directions, so a photon estimate there is
+ * 0 whatever the photons, and a view pass need not make one. Call it on
+ * the material with its textures looked up (pm_hit_material). */
+static inline int pm_mat_is_black(const pm_material *m)
+{
+	int kd0 = m->kd.x == 0 && m->kd.y == 0 && m->kd.z == 0;
+	int ks0 = m->ks.x == 0 && m->ks.y == 0 && m->ks.z == 0;
+	return kd0 && (m->kind == PM_MAT_DIFFUSE || (m->kind == PM_MAT_GLOSSY && ks0));
+}
+
 #endif

@@ -124,13 +124,16 @@ TEST(every_patch_of_a_pixel_gives_its_word_to_the_next)
 }
 
 /* The same two patches meeting along a column: x = 0.109375 runs
- * through the middle of column 4. */
+ * through the middle of column 4; the left one of material LEFT. */
+#define COLUMN(LEFT) \
+	"quad " LEFT " -5 -5 0  0.109375 -5 0  0.109375 5 0  -5 5 0\n" \
+	"quad white 0.109375 -5 0  5 -5 0  5 5 0  0.109375 5 0\n"
+
 static const char column_scene[] =
 	CAMERA
 	"pointlight 0 0 5 power 10 10 10\n"
 	"material white diffuse albedo 0.5 0.5 0.5\n"
-	"quad white -5 -5 0  0.109375 -5 0  0.109375 5 0  -5 5 0\n"
-	"quad white 0.109375 -5 0  5 -5 0  5 5 0  0.109375 5 0\n";
+	COLUMN("white");
 
 TEST(a_patch_new_to_the_row_takes_the_word_on_the_others)
 {
@@ -145,6 +148,35 @@ TEST(a_patch_new_to_the_row_takes_the_word_on_the_others)
 	long want = 8 * (2 + 3 * 1 + 2 + 3 * 1);
 	long got = render_count(&s, 1, 64);
 	CHECKF(got == want, "%ld estimates, want %ld", got, want);
+	pm_scene_free(&s);
+}
+
+/* The column's left patch black (an emitter's usual material): no
+ * estimate is made there, since it would be 0 whatever the photons. */
+static const char black_scene[] =
+	CAMERA
+	"pointlight 0 0 5 power 10 10 10\n"
+	"material white diffuse albedo 0.5 0.5 0.5\n"
+	"material black diffuse albedo 0 0 0 emit 1 1 1\n"
+	COLUMN("black");
+
+TEST(no_estimate_on_a_surface_that_reflects_nothing)
+{
+	pm_scene s;
+
+	if (load(&s, "black.pms", black_scene) != 0)
+		return;
+	/* Each row: columns 0-3 see black only (none); column 4 sees the
+	 * white patch first in the row, with no word from column 3, so it
+	 * decides and reuses the next (2); columns 5-7 reuse (1 each). */
+	long want = 8 * (2 + 3 * 1);
+	long got = render_count(&s, 1, 64);
+	CHECKF(got == want, "%ld estimates, want %ld", got, want);
+	/* --estimates sample: every sample on the white half, none on the
+	 * black: 32 a pixel in column 4 (half its samples, give or take),
+	 * 64 in columns 5-7, so between 8 * 3 * 64 and 8 * 4 * 64. */
+	got = render_count(&s, 0, 64);
+	CHECKF(got > 8 * 3 * 64 && got < 8 * 4 * 64, "--estimates sample: %ld estimates", got);
 	pm_scene_free(&s);
 }
 
@@ -193,5 +225,6 @@ main(void)
 	RUN(every_patch_of_a_pixel_gives_its_word_to_the_next);
 	RUN(a_patch_new_to_the_row_takes_the_word_on_the_others);
 	RUN(past_a_mirror_that_shares_nothing_one_sample_in_n);
+	RUN(no_estimate_on_a_surface_that_reflects_nothing);
 	return check_done();
 }
