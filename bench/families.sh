@@ -14,6 +14,8 @@
 #            (prims dense scanned soup thin cove); add a family there and here
 #   SIZE     image width: 96 | 256 | 256 (height by the scene's aspect)
 #   PHOTONS  photons per pass: 200000
+#   K        photons per estimate (pm-render -k) for the price and every
+#            photon-map series: 50, pm-render's default
 #   RUNS     view-pass timings per estimator, median taken: 3 | 3 | 5
 #   N        pass pairs per estimator for the efficiency: 8 | 8 | 32
 #   REF_PASSES x REF_SPP  the reference: 8 x 256 | 8 x 256 | 32 x 1024 (cached in
@@ -45,7 +47,7 @@ full) d_size=256 d_runs=5 d_n=32 d_rp=32 d_rs=1024 d_budget=1200 ;;
 *) echo "usage: bench/families.sh [quick|mid|full] [BUILD_DIR]" >&2; exit 2 ;;
 esac
 SCENES=${SCENES:-cornell room caustic prims dense scanned soup thin cove}
-SIZE=${SIZE:-$d_size} PHOTONS=${PHOTONS:-200000} RUNS=${RUNS:-$d_runs} N=${N:-$d_n} J=${J:-2} GATHER=${GATHER:-32}
+SIZE=${SIZE:-$d_size} PHOTONS=${PHOTONS:-200000} K=${K:-50} RUNS=${RUNS:-$d_runs} N=${N:-$d_n} J=${J:-2} GATHER=${GATHER:-32}
 REF_PASSES=${REF_PASSES:-$d_rp} REF_SPP=${REF_SPP:-$d_rs} BUDGET=${BUDGET:-$d_budget}
 . "$top/bench/passes.sh"
 command -v python3 >/dev/null || { echo "$0: python3 missing (bench/families.py writes the scenes)" >&2; exit 1; }
@@ -76,12 +78,12 @@ for name in $SCENES; do
 	size=$(sed -n 's/^camera .*size  *\([0-9]*\)  *\([0-9]*\).*/\1x\2/p' "$sc")
 
 	# The price: one view pass on one photon map, each estimator RUNS times.
-	log "$name ($size): view pass, compensated and classical, $PHOTONS photons, $RUNS runs each"
+	log "$name ($size): view pass, compensated and classical, $PHOTONS photons, k $K, $RUNS runs each"
 	"$bin/pm-shoot" -q -j "$J" -n "$PHOTONS" -s 1 "$sc" | "$bin/pm-build" -q -j "$J" -o "$tmp/map.pm"
 	for est in compensated classical; do
 		: >"$tmp/runs"
 		for r in $(seq 1 "$RUNS"); do
-			timed "$bin/pm-render" -q -j "$J" -e $est -s 1 "$sc" "$tmp/map.pm" -o "$tmp/v.exr" >>"$tmp/runs"
+			timed "$bin/pm-render" -q -j "$J" -e $est -k "$K" -s 1 "$sc" "$tmp/map.pm" -o "$tmp/v.exr" >>"$tmp/runs"
 			awk -v t="$(tail -n 1 "$tmp/runs")" -v b="$BUDGET" 'BEGIN { exit !(t > b / 4) }' && break
 		done
 		median <"$tmp/runs" >"$tmp/t-$est"
@@ -119,8 +121,8 @@ for name in $SCENES; do
 				s=$(timed "$bin/pm-render" -q -j "$J" -e path -p 64 -l 1 -P "$i/1000" "$sc" -o "$tmp/pass-$i.exr")
 			else
 				s=$(timed sh -c '"$1/pm-shoot" -q -j "$2" -n "$3" -P "$4" "$5" | "$1/pm-build" -q -j "$2" |
-					"$1/pm-render" -q -j "$2" -e "$6" -g "$8" -P "$4" "$5" - -o "$7"' sh \
-					"$bin" "$J" "$PHOTONS" "$i/$N" "$sc" $e "$tmp/pass-$i.exr" $g)
+					"$1/pm-render" -q -j "$2" -e "$6" -g "$8" -k "$9" -P "$4" "$5" - -o "$7"' sh \
+					"$bin" "$J" "$PHOTONS" "$i/$N" "$sc" $e "$tmp/pass-$i.exr" $g "$K")
 			fi
 			t=$(awk -v a="$t" -v b="$s" 'BEGIN { print a + b }')
 			if [ $est = path ]; then
