@@ -9,16 +9,17 @@
  * Prints "name<TAB>value" lines: the median over RUNS of the mean time per
  * estimate, classical and compensated, their ratio, a checksum of the
  * compensated estimates (the same for any change that computes the same
- * thing), and per bin of polygons in the cube (1, 2, 3-4, 5-8, ...) the
- * estimates there, their mean time (and the classical one's at the same
- * points), and the bin's share of the time the compensated estimates
- * take over the classical ones. -o writes one line per estimate:
- * polygons in its cube, those sampled, microseconds (compensated,
- * classical), the compensated RGB, the groups (sheets and lone polygons)
- * and the polygons whose fates went by rays (pm_comp_stats), for plots
- * and for comparing two builds estimate by estimate. -c sets the
- * compensated estimate's CAST_AT (pm_comp_cast_at, compensate.h), which
- * changes its time, not its answers. -p runs the compensated estimates
+ * thing), the photons whose target area the floor raised (compensate.h,
+ * PM_COMP_FLOOR_REL) and in how many estimates, and per bin of polygons
+ * in the cube (1, 2, 3-4, 5-8, ...) the estimates there, their mean time
+ * (and the classical one's at the same points), and the bin's share of
+ * the time the compensated estimates take over the classical ones. -o
+ * writes one line per estimate: polygons in its cube, those sampled,
+ * microseconds (compensated, classical), the compensated RGB, the groups
+ * (sheets and lone polygons) and the polygons whose fates went by rays
+ * (pm_comp_stats), for plots and for comparing two builds estimate by
+ * estimate. -c sets the compensated estimate's CAST_AT (pm_comp_cast_at,
+ * compensate.h), which changes its time, not its answers. -p runs the compensated estimates
  * whose cubes hold LO to HI polygons five times more in profile_range(),
  * for a profiler to count those alone:
  *   valgrind --tool=callgrind --collect-atstart=no \
@@ -176,6 +177,7 @@ main(int argc, char **argv)
 	int *ngrp = malloc((size_t)ne * sizeof *ngrp), *nfc = malloc((size_t)ne * sizeof *nfc);
 	pm_vec3 *L = malloc((size_t)ne * sizeof *L);
 	double tv[99], tw[99], sink = 0;
+	long nfl = 0, efl = 0;
 	if (!nn || !sc || !tcl || !tco || !polys || !nsam || !ngrp || !nfc || !L)
 		die(path, "out of memory");
 	for (long j = 0; j < ne; j++)
@@ -200,6 +202,10 @@ main(int argc, char **argv)
 			nsam[j] = pm_comp_last(sc)->sampled;
 			ngrp[j] = pm_comp_last(sc)->groups;
 			nfc[j] = pm_comp_last(sc)->fcast;
+			if (i == 0) {
+				nfl += pm_comp_last(sc)->floored;
+				efl += pm_comp_last(sc)->floored > 0;
+			}
 		}
 		tw[i] = cpu_now() - t0;
 	}
@@ -228,6 +234,7 @@ main(int argc, char **argv)
 	printf("us_classical\t%.3f\nus_compensated\t%.3f\ncompensated_over_classical\t%.3f\n",
 	       ucl, uco, uco / ucl);
 	printf("checksum\t%016llx\n", (unsigned long long)hsh);
+	printf("floored\t%ld photons in %ld estimates\n", nfl, efl);
 	/* Per bin also the classical estimates' mean at the same points, and
 	 * the bin's share of what the compensated ones cost over them: where
 	 * the price comes from, which the means alone hide (many cheap

@@ -2367,7 +2367,7 @@ one_polygon(pm_comp_scratch *sc, const pm_vec3 *pos, pm_dvec3 xd, pm_dvec3 nd, d
             double *w, pm_comp_stats *z)
 {
 	const cpoly *P = &sc->g[0];
-	double thr = PM_COMP_SKIP_REL * 4 * h * h;
+	double thr = PM_COMP_SKIP_REL * 4 * h * h, fl = PM_COMP_FLOOR_REL * 4 * h * h;
 
 	for (int j = 0; j < z->front; j++) {
 		int i = sc->act[j];
@@ -2380,11 +2380,12 @@ one_polygon(pm_comp_scratch *sc, const pm_vec3 *pos, pm_dvec3 xd, pm_dvec3 nd, d
 		f = facing(P, psi, c, nd);
 		A = f > 0 ? f * P->A : 0;
 		/* The photon's own spot (an unsampled polygon's share of GRID^2
-		 * cells), as in the general path. */
+		 * cells), and the floor, as in the general path. */
 		A = dmax(A, f * P->A / (GRID * GRID));
-		if (A > thr * c)
-			w[i] = c / A;
-		else
+		if (A > thr * c) {
+			z->floored += A < fl * c;
+			w[i] = c / dmax(A, fl * c);
+		} else
 			z->skipped++;
 	}
 }
@@ -2664,7 +2665,7 @@ weights(const pm_polyindex *pi, pm_vec3 x, pm_vec3 n,
 	}
 
 	/* Eq. 4 over what counts, eq. 2 and 3: Phi_p / A_p (Psi_p . N). */
-	double thr = PM_COMP_SKIP_REL * 4 * h * h;
+	double thr = PM_COMP_SKIP_REL * 4 * h * h, fl = PM_COMP_FLOOR_REL * 4 * h * h;
 	int *cand = sc->bl + sc->nbl, *dcand = cand + sc->ng + 1, wait = pm_comp_fronts_wait;
 	for (int j = 0; j < na; j++) {
 		int own = sc->own[j];
@@ -2793,9 +2794,11 @@ weights(const pm_polyindex *pi, pm_vec3 x, pm_vec3 n,
 			const cpoly *O = &sc->g[own];
 			A = dmax(A, facing(O, psi, c, nd) * O->A / (O->ncell > 0 ? O->ncell : GRID * GRID));
 		}
-		if (A > thr * c)
-			w[sc->act[j]] = c / A;
-		else
+		/* And never below the floor (compensate.h). */
+		if (A > thr * c) {
+			z.floored += A < fl * c;
+			w[sc->act[j]] = c / dmax(A, fl * c);
+		} else
 			z.skipped++;
 	}
 out:

@@ -40,6 +40,13 @@
  *    between (Psi_p . N) and A_p and grazing photons stay exact.
  *  - A_p is never less than the photon's own polygon's share of one sample
  *    cell; a photon whose A_p is (almost) nothing is skipped and counted.
+ *  - Nor less than FLOOR_REL of the cube's face as x's plane sees it,
+ *    (2h)^2 (Psi_p . n) FLOOR_REL: about k FLOOR_REL photons land on such
+ *    an area, under one, so the estimate rests there on a photon or none,
+ *    and the one (a photon grazing a facet in a crevice of a rough mesh)
+ *    read 400 times the pixel. The floor bounds a photon's weight at
+ *    1 / FLOOR_REL times that of one on a wall filling the cube; it
+ *    darkens what x sees of less than that area, by the share missing.
  *  - Photons all at one point (cube of size 0): the cube gets a minimum
  *    half-size of HMIN_REL times the size of the photon-surface geometry. */
 #ifndef PM_COMPENSATE_H
@@ -51,6 +58,7 @@
 #define PM_COMP_TAU_REL 1e-3   /* boundary shell width, relative to h */
 #define PM_COMP_HMIN_REL 1e-6  /* minimum h, relative to the geometry's size */
 #define PM_COMP_SKIP_REL 1e-9  /* A_p below this * (2h)^2 * (Psi.n): skipped */
+#define PM_COMP_FLOOR_REL (1.0 / 256) /* ... else at least this * (2h)^2 * (Psi.n) */
 
 typedef struct pm_comp_scratch pm_comp_scratch;
 
@@ -95,6 +103,8 @@ typedef struct pm_comp_stats {
 	int skipped;     /* of those, without target area (A_p ~ 0) */
 	int hidden;      /* of those, failing the model's test (not on a facing
 	                    polygon of the cube, unseen from x', another fate) */
+	int floored;     /* of those counted, whose A_p was raised to the floor
+	                    (PM_COMP_FLOOR_REL) */
 	int polys;       /* polygons with area in the cube */
 	int groups;      /* sheets and lone polygons they make (compensate.c, groups()) */
 	int sampled;     /* of the polygons, given sample points (something can hide part of it) */

@@ -941,6 +941,58 @@ TEST(no_target_area_skipped)
 	tp_free(&p);
 }
 
+/* A photon's target area is never below PM_COMP_FLOOR_REL of the cube's
+ * face as x's plane sees it: on a 1 cm tile alone in a cube of some 0.8 m
+ * (the other photons float in the air and count for nothing) the tile's
+ * photons take the floor's weight, not 1 / (tile area); on a 20 cm tile
+ * the floor is far below the tile and changes nothing. With a wall beside
+ * the tile (the general path, not the cube of one polygon) the same. */
+TEST(target_area_floor)
+{
+	for (int big = 0; big <= 1; big++)
+		for (int wall = 0; wall <= 1; wall++) {
+			tscene t;
+			pm_rng r = pm_rng_seed(21, (uint64_t)(2 * big + wall));
+			double side = big ? 0.2 : 0.01;
+			ts_init(&t);
+			ts_rect(&t, ts_object(&t, 0, 0), pm_v3((float)(-side / 2), (float)(-side / 2), 0),
+			        pm_v3((float)side, 0, 0), pm_v3(0, (float)side, 0));
+			if (wall)
+				ts_rect(&t, ts_object(&t, 0, 0), pm_v3(0.3f, -0.5f, 0), pm_v3(0, 0, 0.5f),
+				        pm_v3(0, 1, 0));
+			pm_polyindex *pi = index_of(&t);
+			pm_comp_scratch *sc = pm_comp_scratch_new(K);
+			pm_vec3 x = pm_v3(0, 0, 0), pos[K], dir[K];
+			double w[K];
+			int on = 10, n = 0;
+			/* on the tile, from above and aside (Psi.n = c) */
+			for (; n < on; n++) {
+				pos[n] = pm_v3((float)(side * (rnd(&r) - 0.5)), (float)(side * (rnd(&r) - 0.5)), 0);
+				dir[n] = unit(0.2, 0.1, 1);
+			}
+			/* in the air above it, out to 0.4 (L-infinity) */
+			for (; n < 40; n++) {
+				pos[n] = pm_v3((float)(0.8 * rnd(&r) - 0.4), (float)(0.8 * rnd(&r) - 0.4),
+				               (float)(0.05 + 0.35 * rnd(&r)));
+				dir[n] = UP;
+			}
+			pm_comp_stats st;
+			pm_comp_weights(pi, x, UP, pos, dir, n, 0, sc, w, &st);
+			double area = side * side, fl = PM_COMP_FLOOR_REL * 4 * st.h * st.h;
+			double want = 1 / (area > fl ? area : fl);
+			int right = 0;
+			for (int i = 0; i < on; i++)
+				right += fabs(w[i] / want - 1) < 1e-6;
+			/* the small tile's photons at most a tenth of 1 / area */
+			CHECKF(sc && st.h > 0.3 && st.polys == 1 + wall && right == on && (big || w[0] * area < 0.1) &&
+			       st.floored == (big ? 0 : on) && st.hidden == n - on - st.shell,
+			       "big %d wall %d: h %g polys %d, %d of %d weights %g (w0 %g), floored %d, hidden %d",
+			       big, wall, st.h, st.polys, right, on, want, w[0], st.floored, st.hidden);
+			pm_comp_scratch_free(sc);
+			pm_polyindex_free(pi);
+		}
+}
+
 /* Photons at Psi.N = 1e-6: on a plain floor each still brings flux / A
  * (the cosine cancels); at a floor-wall edge the wall takes nearly all of
  * their target area, and the value matches eq. 3 worked by hand. */
@@ -2130,6 +2182,7 @@ main(void)
 	RUN(boundary_shell);
 	RUN(all_photons_at_one_point);
 	RUN(no_target_area_skipped);
+	RUN(target_area_floor);
 	RUN(grazing_photons);
 	RUN(fewer_photons_than_k);
 	RUN(photons_not_finite_unused);
