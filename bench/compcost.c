@@ -19,9 +19,9 @@
  * (sheets and lone polygons) and the polygons whose fates went by rays
  * (pm_comp_stats), for plots and for comparing two builds estimate by
  * estimate. -c sets the compensated estimate's CAST_AT (pm_comp_cast_at,
- * compensate.h), which changes its time, not its answers. -p runs the compensated estimates
- * whose cubes hold LO to HI polygons five times more in profile_range(),
- * for a profiler to count those alone:
+ * compensate.h), which changes its time, not its answers. -p runs the
+ * compensated estimates whose cubes hold LO to HI polygons five times
+ * more in profile_range(), for a profiler to count those alone:
  *   valgrind --tool=callgrind --collect-atstart=no \
  *       --toggle-collect=profile_range compcost -r 1 -p 32,100000 SCENE */
 #include <float.h>

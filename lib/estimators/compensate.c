@@ -2357,6 +2357,21 @@ facing(const cpoly *P, pm_dvec3 psi, double c, pm_dvec3 n)
 	return dmax(0, pm_ddot(psi, P->Ne));
 }
 
+/* The weight c / A_p of a photon whose target area came to A, or 0 for one
+ * with (next to) none (skipped); never spread over less than the floor
+ * (compensate.h). thr and fl are SKIP_REL and FLOOR_REL times (2h)^2. The
+ * one place both paths decide it. */
+static inline double
+spread(double A, double c, double thr, double fl, pm_comp_stats *z)
+{
+	if (!(A > thr * c)) {
+		z->skipped++;
+		return 0;
+	}
+	z->floored += A < fl * c;
+	return c / dmax(A, fl * c);
+}
+
 /* The weights where the cube holds one polygon (most cubes: the middle of
  * a wall or a floor), the general path's answer without its groups, lists
  * and sight boxes, which have nothing to do there: a photon counts when it
@@ -2382,11 +2397,7 @@ one_polygon(pm_comp_scratch *sc, const pm_vec3 *pos, pm_dvec3 xd, pm_dvec3 nd, d
 		/* The photon's own spot (an unsampled polygon's share of GRID^2
 		 * cells), and the floor, as in the general path. */
 		A = dmax(A, f * P->A / (GRID * GRID));
-		if (A > thr * c) {
-			z->floored += A < fl * c;
-			w[i] = c / dmax(A, fl * c);
-		} else
-			z->skipped++;
+		w[i] = spread(A, c, thr, fl, z);
 	}
 }
 
@@ -2794,12 +2805,7 @@ weights(const pm_polyindex *pi, pm_vec3 x, pm_vec3 n,
 			const cpoly *O = &sc->g[own];
 			A = dmax(A, facing(O, psi, c, nd) * O->A / (O->ncell > 0 ? O->ncell : GRID * GRID));
 		}
-		/* And never below the floor (compensate.h). */
-		if (A > thr * c) {
-			z.floored += A < fl * c;
-			w[sc->act[j]] = c / dmax(A, fl * c);
-		} else
-			z.skipped++;
+		w[sc->act[j]] = spread(A, c, thr, fl, &z);
 	}
 out:
 	if (st)
