@@ -10,10 +10,12 @@
  * estimate, classical and compensated, their ratio, a checksum of the
  * compensated estimates (the same for any change that computes the same
  * thing), the photons whose target area the floor raised (compensate.h,
- * PM_COMP_FLOOR_REL) and in how many estimates, and per bin of polygons
- * in the cube (1, 2, 3-4, 5-8, ...) the estimates there, their mean time
- * (and the classical one's at the same points), and the bin's share of
- * the time the compensated estimates take over the classical ones. -o
+ * PM_COMP_FLOOR_REL) and in how many estimates, the polygons given sample
+ * points and those found hidden from x' whole without (pm_comp_stats
+ * sampled, whole), and per bin of polygons in the cube (1, 2, 3-4, 5-8,
+ * ...) the estimates there, their mean time (and the classical one's at
+ * the same points), and the bin's share of the time the compensated
+ * estimates take over the classical ones. -o
  * writes one line per estimate: polygons in its cube, those sampled,
  * microseconds (compensated, classical), the compensated RGB, the groups
  * (sheets and lone polygons) and the polygons whose fates went by rays
@@ -177,7 +179,7 @@ main(int argc, char **argv)
 	int *ngrp = malloc((size_t)ne * sizeof *ngrp), *nfc = malloc((size_t)ne * sizeof *nfc);
 	pm_vec3 *L = malloc((size_t)ne * sizeof *L);
 	double tv[99], tw[99], sink = 0;
-	long nfl = 0, efl = 0;
+	long nfl = 0, efl = 0, nwh = 0, nsm = 0;
 	if (!nn || !sc || !tcl || !tco || !polys || !nsam || !ngrp || !nfc || !L)
 		die(path, "out of memory");
 	for (long j = 0; j < ne; j++)
@@ -205,6 +207,8 @@ main(int argc, char **argv)
 			if (i == 0) {
 				nfl += pm_comp_last(sc)->floored;
 				efl += pm_comp_last(sc)->floored > 0;
+				nwh += pm_comp_last(sc)->whole;
+				nsm += pm_comp_last(sc)->sampled;
 			}
 		}
 		tw[i] = cpu_now() - t0;
@@ -235,6 +239,7 @@ main(int argc, char **argv)
 	       ucl, uco, uco / ucl);
 	printf("checksum\t%016llx\n", (unsigned long long)hsh);
 	printf("floored\t%ld photons in %ld estimates\n", nfl, efl);
+	printf("sampled\t%ld polygons; %ld more hidden whole, unsampled\n", nsm, nwh);
 	/* Per bin also the classical estimates' mean at the same points, and
 	 * the bin's share of what the compensated ones cost over them: where
 	 * the price comes from, which the means alone hide (many cheap

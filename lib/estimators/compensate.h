@@ -108,6 +108,9 @@ typedef struct pm_comp_stats {
 	int polys;       /* polygons with area in the cube */
 	int groups;      /* sheets and lone polygons they make (compensate.c, groups()) */
 	int sampled;     /* of the polygons, given sample points (something can hide part of it) */
+	int whole;       /* of the polygons, found hidden from x' whole by one
+	                    polygon (x's own or one on their list), with no
+	                    samples (pm_comp_hidden_whole) */
 	int cells;       /* their sample cells: of G x G over a polygon's box, those
 	                    inside it (one, its vertices' mean, where none is) */
 	int cast;        /* of those, with so many that may hide them that what x'
@@ -181,6 +184,14 @@ extern int pm_comp_shadow_from;
  * them with the rest. For tests and benchmarks, set before any estimate
  * runs. */
 extern int pm_comp_fronts_wait;
+
+/* 1: a polygon that one convex polygon hides whole from x' (x's own, of
+ * another object and sheet, or one on its list of what may hide it), with
+ * a margin of a few eps, is taken as unseen at once: no lists of what its
+ * points' backward rays may meet, no samples; the same weights (compensate.c,
+ * hides_all()). 0 samples it and finds every cell hidden. For tests and
+ * benchmarks, set before any estimate runs. */
+extern int pm_comp_hidden_whole;
 
 /* The statistics of the last pm_estimate_compensated call with sc. */
 const pm_comp_stats *pm_comp_last(const pm_comp_scratch *sc);

@@ -1770,9 +1770,10 @@ TEST(short_paths_match_the_general_one)
 
 /* The weights of 20 estimates on the floor of t (photons from a cosine
  * sky over it), each made twice: with set(0), then with set(1) in force.
- * Counts the estimates whose weights (or counts of hidden, skipped and
- * sampled polygons) differ, and sums the second runs' statistics; the
- * first runs' must be nought where set(0) turns a path off. */
+ * Counts the estimates whose weights (or counts of hidden and skipped
+ * photons, or of polygons sampled or hidden whole) differ, and sums the
+ * second runs' statistics; the first runs' must be nought where set(0)
+ * turns a path off. */
 typedef struct twins {
 	int differ, minpolys;
 	long cast[2], shadowed[2], waited[2], fcast[2];
@@ -1808,8 +1809,11 @@ twin_weights(tscene *t, uint64_t seed, void (*set)(int))
 			s1 += w1[a];
 			same &= w1[a] == w2[a];
 		}
+		/* A polygon hidden whole takes no samples where it has a list to
+		 * find that in (pm_comp_hidden_whole), and is sampled where what
+		 * x' sees of it goes through the tree. */
 		tw.differ += !(s1 > 0 && same && st1.hidden == st2.hidden && st1.skipped == st2.skipped &&
-		               st1.sampled == st2.sampled);
+		               st1.sampled + st1.whole == st2.sampled + st2.whole);
 		tw.minpolys = st1.polys < tw.minpolys ? st1.polys : tw.minpolys;
 		tw.cast[0] += st1.cast;
 		tw.cast[1] += st2.cast;
@@ -1942,6 +1946,79 @@ TEST(fronts_wait_change_nothing)
 		CHECKF(tw.differ == 0, "scene %d: weights differ in %d of 20 estimates", c, tw.differ);
 	}
 	CHECKF(waited > 1000, "only %ld fronts waited", waited);
+}
+
+/* A shelf of books: boxes (solids) of different heights and widths in a
+ * row on the floor, touching or 1 mm apart. Returns how many; top[i] is
+ * book i's top face (its rectangle). */
+static int
+books(tscene *t, pm_rng *r, int *top, int max)
+{
+	int nb = 0;
+	double x0 = -0.07;
+	ts_floor(t);
+	while (x0 < 0.07 && nb < max) {
+		double w = 0.008 + 0.012 * rnd(r), hgt = 0.03 + 0.02 * rnd(r);
+		top[nb++] = t->nrect + 1;
+		ts_box(t, ts_object(t, 1, 0), pm_v3((float)x0, -0.03f, 0), pm_v3((float)(x0 + w), 0.03f, (float)hgt));
+		x0 += w + (rnd(r) < 0.5 ? 0 : 0.001);
+	}
+	return nb;
+}
+
+/* A polygon one other hides whole from x' takes no lists and no samples
+ * (pm_comp_hidden_whole): the weights must be the very same as sampling
+ * it, for estimates on the tops of a shelf of books whose every face is
+ * lit (the sides in the gaps between books hidden by x's own top, and by
+ * the neighbours), and polygons must have been found hidden whole. */
+TEST(hidden_whole_changes_nothing)
+{
+	static tscene t;
+	static double w1[K], w2[K];
+	static int idx[4096];
+	static pm_vec3 pos[4096], dir[4096];
+	long whole[2] = {0, 0};
+	int differ = 0, top[12];
+	for (int c = 0; c < 3; c++) {
+		pm_rng r = pm_rng_seed(91, (uint64_t)c);
+		tphotons p = {.flux = 1e-3};
+		int nb = books(&t, &r, top, 12);
+		for (int i = 0; i < t.nrect; i++) {
+			pm_vec3 N = pm_norm(pm_cross(t.ru[i], t.rv[i]));
+			for (int j = 0; j < (i == 0 ? 2000 : 60); j++)
+				tp_rect(&p, &t, i, 1, pm_sample_cosine(N, pm_rng_f(&r), pm_rng_f(&r)), &r, 0);
+		}
+		pm_polyindex *pi = index_of(&t);
+		pm_comp_scratch *sc = pm_comp_scratch_new(K);
+		for (int q = 0; q < 40; q++) {
+			int b = top[(int)(rnd(&r) * nb) % nb];
+			double a = 0.05 + 0.9 * rnd(&r), e = 0.05 + 0.9 * rnd(&r), dfar, sum = 0;
+			pm_vec3 x = pm_add(t.ro[b], pm_add(pm_scale(t.ru[b], (float)a), pm_scale(t.rv[b], (float)e)));
+			pm_comp_stats st1, st2;
+			int n = knn(&p, x, K, linf, idx, &dfar), same = 1;
+			for (int i = 0; i < n; i++) {
+				pos[i] = p.pos[idx[i]];
+				dir[i] = p.dir[idx[i]];
+			}
+			pm_comp_hidden_whole = 0;
+			pm_comp_weights(pi, x, UP, pos, dir, n, 0, sc, w1, &st1);
+			pm_comp_hidden_whole = 1;
+			pm_comp_weights(pi, x, UP, pos, dir, n, 0, sc, w2, &st2);
+			for (int i = 0; i < n; i++) {
+				sum += w1[i];
+				same &= w1[i] == w2[i];
+			}
+			differ += !(sum > 0 && same && st1.hidden == st2.hidden && st1.skipped == st2.skipped &&
+			            st1.polys == st2.polys);
+			whole[0] += st1.whole;
+			whole[1] += st2.whole;
+		}
+		pm_comp_scratch_free(sc);
+		pm_polyindex_free(pi);
+		tp_free(&p);
+	}
+	CHECKF(differ == 0, "weights differ in %d of 120 estimates", differ);
+	CHECKF(whole[0] == 0 && whole[1] > 100, "polygons hidden whole: %ld off, %ld on", whole[0], whole[1]);
 }
 
 /* Rays with set(1), lists with set(0), both counting every area by its
@@ -2199,6 +2276,7 @@ main(void)
 	RUN(tree_sees_what_the_lists_see);
 	RUN(shadow_box_drops_no_hit);
 	RUN(fronts_wait_change_nothing);
+	RUN(hidden_whole_changes_nothing);
 	RUN(rays_find_the_fates_the_lists_find);
 	RUN(convex_sheets_need_no_fates);
 	RUN(tiny_tiles_one_cell_each);
