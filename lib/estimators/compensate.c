@@ -1541,20 +1541,22 @@ hides_all(const pm_comp_scratch *sc, const cpoly *B, const cpoly *P, pm_dvec3 xo
 	return 1;
 }
 
-/* 1 if x's own polygon (one of the nxp in xp, of another object and group
- * than P: a solid's own faces and a sheet's facets are seen through,
- * may_hide_rest() and skip_group()) hides all of P (hides_all()): then P
- * needs no lists and no samples, and nothing of it counts, as its list
- * (which would hold that polygon) would find cell by cell. On a bookshelf
- * these are the sides of the books next to x's spine: thin's cubes of
- * 9-32 polygons sampled 56 % of their polygons only to find every cell
- * hidden. */
+/* 1 if x's own polygon (one of the nxp in xp) hides all of P
+ * (hides_all()) and the model lets it: not of P's group (a sheet hides
+ * none of itself) nor of P's object where that is convex (skip_group())
+ * or where P is a nearly flat neighbour on x's own solid (may_hide_rest()).
+ * Then P needs no lists and no samples, and nothing of it counts, as its
+ * list (which would hold that polygon) would find cell by cell. On a
+ * bookshelf these are the sides of the books next to x's spine: thin's
+ * cubes of 9-32 polygons sampled 56 % of their polygons only to find
+ * every cell hidden; on a rough mesh, the facets in a crevice behind x's. */
 static int
 behind_x(const pm_comp_scratch *sc, const cpoly *P, const int *xp, int nxp, pm_dvec3 xo, double eps)
 {
 	for (int k = 0; k < nxp; k++) {
 		const cpoly *X = &sc->g[xp[k]];
-		if (X->obj != P->obj && X->grp != P->grp && hides_all(sc, X, P, xo, eps))
+		if (X->grp != P->grp && (X->obj != P->obj || (!sc->cvx[P->obj] && !(X->solid && P->own))) &&
+		    hides_all(sc, X, P, xo, eps))
 			return 1;
 	}
 	return 0;
