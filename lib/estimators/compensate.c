@@ -2184,10 +2184,13 @@ pair_lists(pm_comp_scratch *sc, const unsigned char *cvx, pm_dvec3 xo, pm_dvec3 
 			sc->nbl = P->r0;
 		}
 		/* One polygon on the list hiding all of P: seen() would say so of
-		 * every cell and photon, so P is unseen, with no F list. */
-		for (int i = 0; i < P->nr && !P->cast && !P->unseen && pm_comp_hidden_whole; i++)
+		 * every cell and photon, so P is unseen, with no F list. Where
+		 * the walk stopped (P->cast), one of those it found will do as
+		 * well: seen_cast() would find it on every segment. */
+		for (int i = 0; i < P->nr && !P->unseen && pm_comp_hidden_whole; i++)
 			if (hides_all(sc, &sc->g[sc->bl[P->r0 + i]], P, xo, eps)) {
 				P->unseen = 1;
+				P->cast = 0;
 				P->nr = 0;
 				sc->nbl = P->r0;
 				sc->nwhole++;
