@@ -17,8 +17,11 @@
  * meet either: the points' rays go through that tree, a few parallel ones
  * in one walk (cast_fates()).
  * Only polygons that something can hide (or, there, that are lit and
- * seen) get sample points, and only their samples cost work per photon; a
- * photon on a sheet nothing touches costs a slab test and a dot product. All geometry is double and relative to x. */
+ * seen) get sample points, but not one that a single polygon hides whole
+ * (x's own, or one on its list: hides_all()), which is unseen at once;
+ * and only their samples cost work per photon; a photon on a sheet
+ * nothing touches costs a slab test and a dot product. All geometry is
+ * double and relative to x. */
 #include "estimators/compensate.h"
 
 #include <float.h>
@@ -148,7 +151,7 @@ typedef struct cpoly {
 	                          those covered for every direction */
 	int ncell;             /* cells its area was shared among */
 	int unseen;            /* not seen from x' at all: a solid's face turned
-	                          away, or a polygon behind x's own (behind_x()) */
+	                          away, or hidden whole by one polygon (hides_all()) */
 	int lit;               /* faces some photon used: else nothing of it counts,
 	                          and it needs no lists and no samples */
 	double aopen;          /* area seen from x', not covered by a polygon on its plane */

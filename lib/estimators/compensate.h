@@ -185,12 +185,12 @@ extern int pm_comp_shadow_from;
  * runs. */
 extern int pm_comp_fronts_wait;
 
-/* 1: a polygon that one convex polygon hides whole from x' (x's own, of
- * another object and sheet, or one on its list of what may hide it), with
- * a margin of a few eps, is taken as unseen at once: no lists of what its
- * points' backward rays may meet, no samples; the same weights (compensate.c,
- * hides_all()). 0 samples it and finds every cell hidden. For tests and
- * benchmarks, set before any estimate runs. */
+/* 1: a polygon that one convex polygon hides whole from x' (x's own, where
+ * the model lets that hide it, or one on its list of what may hide it),
+ * with a margin of a few eps, is taken as unseen at once: no lists of what
+ * its points' backward rays may meet, no samples; the same weights
+ * (compensate.c, hides_all()). 0 samples it and finds every cell hidden.
+ * For tests and benchmarks, set before any estimate runs. */
 extern int pm_comp_hidden_whole;
 
 /* The statistics of the last pm_estimate_compensated call with sc. */
