@@ -1523,22 +1523,30 @@ may_hide_rest(const pm_comp_scratch *sc, const cpoly *P, int b, const double *pl
 
 /* 1 if convex polygon B hides every point of P from x', and every photon
  * within eps of P, as crosses() finds: each of P's vertices lies more
- * than 3 eps beyond B's plane from x', and the segment from x' to it
- * crosses B more than 3 eps inside B's edges. The segments to P's other
+ * than a margin m beyond B's plane from x', and the segment from x' to it
+ * crosses B more than m inside B's edges. The segments to P's other
  * points cross B within the hull of those crossings (a projection from x'
- * keeps P convex and brings points nearer), so inside it too. */
+ * keeps P convex and brings points nearer), so inside it too. m is 3 eps
+ * plus twice the largest distance of P's vertices from P's plane: a
+ * polygon is planar only to 1e-5 of its size (scene_poly.c), and its
+ * sample points lie on the plane, up to that far off its hull. */
 static int
 hides_all(const pm_comp_scratch *sc, const cpoly *B, const cpoly *P, pm_dvec3 xo, double eps)
 {
-	double sx = pm_ddot(B->N, xo) - B->d;
+	double sx = pm_ddot(B->N, xo) - B->d, m = 0;
 
-	if (!B->convex || fabs(sx) <= 3 * eps)
+	if (!B->convex)
+		return 0;
+	for (int i = 0; i < P->nv; i++)
+		m = dmax(m, fabs(pm_ddot(P->N, sc->cv[P->v0 + i]) - P->d));
+	m = 3 * eps + 2 * m;
+	if (fabs(sx) <= m)
 		return 0;
 	for (int i = 0; i < P->nv; i++) {
 		pm_dvec3 v = sc->cv[P->v0 + i];
 		double sy = pm_ddot(B->N, v) - B->d;
-		if ((sy > 0) == (sx > 0) || fabs(sy) <= 3 * eps ||
-		    !inside(sc, B, pm_dadd(xo, pm_dscale(pm_dsub(v, xo), sx / (sx - sy))), 3 * eps, 0))
+		if ((sy > 0) == (sx > 0) || fabs(sy) <= m ||
+		    !inside(sc, B, pm_dadd(xo, pm_dscale(pm_dsub(v, xo), sx / (sx - sy))), m, 0))
 			return 0;
 	}
 	return 1;
