@@ -1470,16 +1470,32 @@ others_behind(pm_comp_scratch *sc, const cpoly *P, double eps)
 	return 1;
 }
 
-/* 1 if no polygon of group G can hide part of P from x' (pair_lists): P's
- * own sheet, one convex solid's faces (they never hide each other), or a
- * sheet out of reach. */
+/* 1 if the model lets no polygon of group G hide part of P from x',
+ * whatever the geometry: G is P's own sheet (sgrp), or the faces of one
+ * convex solid, which never hide each other. */
+static inline int
+group_sees_through(const pm_comp_scratch *sc, const unsigned char *cvx, const cpoly *P, int G, int sgrp)
+{
+	return G == sgrp || (cvx[P->obj] && sc->g[sc->gp[sc->gr[G].p0]].obj == P->obj);
+}
+
+/* 1 if B is a polygon x lies on and P a nearly flat neighbour on x's own
+ * solid (own, pair_lists()): x sees it through B. */
+static inline int
+own_neighbour(const cpoly *B, const cpoly *P, int own)
+{
+	return B->xon && B->solid && B->obj == P->obj && own;
+}
+
+/* 1 if no polygon of group G can hide part of P from x' (pair_lists): the
+ * model's group_sees_through(), or a sheet out of reach. */
 static int
 skip_group(const pm_comp_scratch *sc, const unsigned char *cvx, const cpoly *P, int G, int sgrp,
            pm_dvec3 xo, double eps)
 {
 	const cgroup *Gr = &sc->gr[G];
 
-	if (G == sgrp || (cvx[P->obj] && sc->g[sc->gp[Gr->p0]].obj == P->obj))
+	if (group_sees_through(sc, cvx, P, G, sgrp))
 		return 1;
 	return Gr->np > 1 && group_not_between(sc, P, Gr, xo, eps);
 }
@@ -1510,8 +1526,7 @@ may_hide_rest(const pm_comp_scratch *sc, const cpoly *P, int b, const double *pl
 	const cpoly *B = &sc->g[b];
 	double sx = plsx[b], lo, hi, u;
 
-	/* x sees its own solid's nearly flat neighbours through it. */
-	if (B->xon && B->solid && B->obj == P->obj && own)
+	if (own_neighbour(B, P, own))
 		return 0;
 	if (fabs(t) > P->rad)
 		lo = t - P->rad, hi = t + P->rad;
@@ -1526,21 +1541,14 @@ may_hide_rest(const pm_comp_scratch *sc, const cpoly *P, int b, const double *pl
  * than a margin m beyond B's plane from x', and the segment from x' to it
  * crosses B more than m inside B's edges. The segments to P's other
  * points cross B within the hull of those crossings (a projection from x'
- * keeps P convex and brings points nearer), so inside it too. m is 3 eps
- * plus twice the largest distance of P's vertices from P's plane: a
- * polygon is planar only to 1e-5 of its size (scene_poly.c), and its
- * sample points lie on the plane, up to that far off its hull. */
+ * keeps P convex and brings points nearer), so inside it too. m is
+ * hide_margin()'s. */
 static int
-hides_all(const pm_comp_scratch *sc, const cpoly *B, const cpoly *P, pm_dvec3 xo, double eps)
+hides_all(const pm_comp_scratch *sc, const cpoly *B, const cpoly *P, pm_dvec3 xo, double m)
 {
-	double sx = pm_ddot(B->N, xo) - B->d, m = 0;
+	double sx = pm_ddot(B->N, xo) - B->d;
 
-	if (!B->convex)
-		return 0;
-	for (int i = 0; i < P->nv; i++)
-		m = dmax(m, fabs(pm_ddot(P->N, sc->cv[P->v0 + i]) - P->d));
-	m = 3 * eps + 2 * m;
-	if (fabs(sx) <= m)
+	if (!B->convex || fabs(sx) <= m)
 		return 0;
 	for (int i = 0; i < P->nv; i++) {
 		pm_dvec3 v = sc->cv[P->v0 + i];
@@ -1552,22 +1560,35 @@ hides_all(const pm_comp_scratch *sc, const cpoly *B, const cpoly *P, pm_dvec3 xo
 	return 1;
 }
 
+/* hides_all()'s margin for P: 3 eps plus twice the largest distance of
+ * P's vertices from P's plane. A polygon is planar only to 1e-5 of its
+ * size (scene_poly.c), and its sample points lie on the plane, up to that
+ * far off its hull. */
+static double
+hide_margin(const pm_comp_scratch *sc, const cpoly *P, double eps)
+{
+	double m = 0;
+
+	for (int i = 0; i < P->nv; i++)
+		m = dmax(m, fabs(pm_ddot(P->N, sc->cv[P->v0 + i]) - P->d));
+	return 3 * eps + 2 * m;
+}
+
 /* 1 if x's own polygon (one of the nxp in xp) hides all of P
- * (hides_all()) and the model lets it: not of P's group (a sheet hides
- * none of itself) nor of P's object where that is convex (skip_group())
- * or where P is a nearly flat neighbour on x's own solid (may_hide_rest()).
+ * (hides_all(), margin m) and the model lets it hide any of P
+ * (group_sees_through(), own_neighbour()).
  * Then P needs no lists and no samples, and nothing of it counts, as its
  * list (which would hold that polygon) would find cell by cell. On a
  * bookshelf these are the sides of the books next to x's spine: thin's
  * cubes of 9-32 polygons sampled 56 % of their polygons only to find
  * every cell hidden; on a rough mesh, the facets in a crevice behind x's. */
 static int
-behind_x(const pm_comp_scratch *sc, const cpoly *P, const int *xp, int nxp, pm_dvec3 xo, double eps)
+behind_x(const pm_comp_scratch *sc, const cpoly *P, const int *xp, int nxp, pm_dvec3 xo, double m)
 {
 	for (int k = 0; k < nxp; k++) {
 		const cpoly *X = &sc->g[xp[k]];
-		if (X->grp != P->grp && (X->obj != P->obj || (!sc->cvx[P->obj] && !(X->solid && P->own))) &&
-		    hides_all(sc, X, P, xo, eps))
+		if (!group_sees_through(sc, sc->cvx, P, X->grp, sheet_of(sc, P)) && !own_neighbour(X, P, P->own) &&
+		    hides_all(sc, X, P, xo, m))
 			return 1;
 	}
 	return 0;
@@ -2138,7 +2159,8 @@ pair_lists(pm_comp_scratch *sc, const unsigned char *cvx, pm_dvec3 xo, pm_dvec3 
 			P->f0 = sc->nbl;
 			continue;
 		}
-		if (!P->unseen && P->lit && pm_comp_hidden_whole && behind_x(sc, P, xp, nxp, xo, eps)) {
+		double hm = !P->unseen && P->lit && pm_comp_hidden_whole ? hide_margin(sc, P, eps) : 0;
+		if (hm > 0 && behind_x(sc, P, xp, nxp, xo, hm)) {
 			P->unseen = 1;
 			sc->nwhole++;
 		}
@@ -2198,8 +2220,8 @@ pair_lists(pm_comp_scratch *sc, const unsigned char *cvx, pm_dvec3 xo, pm_dvec3 
 		 * every cell and photon, so P is unseen, with no F list. Where
 		 * the walk stopped (P->cast), one of those it found will do as
 		 * well: seen_cast() would find it on every segment. */
-		for (int i = 0; i < P->nr && !P->unseen && pm_comp_hidden_whole; i++)
-			if (hides_all(sc, &sc->g[sc->bl[P->r0 + i]], P, xo, eps)) {
+		for (int i = 0; i < P->nr && !P->unseen && hm > 0; i++)
+			if (hides_all(sc, &sc->g[sc->bl[P->r0 + i]], P, xo, hm)) {
 				P->unseen = 1;
 				P->cast = 0;
 				P->nr = 0;
