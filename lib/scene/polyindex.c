@@ -79,6 +79,23 @@ select_mid(builder *b, uint32_t lo, uint32_t hi, uint32_t mid, int ax)
 		swap_entries(b, lo, lo + 1);
 }
 
+/* Node id's box: the boxes of entries [lo, hi) at a leaf, its children's
+ * together above (the same floats: a minimum of minima). Plain comparisons,
+ * not fminf() and fmaxf(): those are calls, and no box holds a NaN. */
+static void
+leaf_box(pm_polyindex *pi, pm_bvh_node *nd, uint32_t lo, uint32_t hi)
+{
+	for (int k = 0; k < 3; k++) {
+		nd->lo[k] = INFINITY;
+		nd->hi[k] = -INFINITY;
+	}
+	for (uint32_t i = lo; i < hi; i++)
+		for (int k = 0; k < 3; k++) {
+			nd->lo[k] = pi->box[i][k] < nd->lo[k] ? pi->box[i][k] : nd->lo[k];
+			nd->hi[k] = pi->box[i][3 + k] > nd->hi[k] ? pi->box[i][3 + k] : nd->hi[k];
+		}
+}
+
 static uint32_t
 build_node(builder *b, uint32_t lo, uint32_t hi)
 {
@@ -88,31 +105,33 @@ build_node(builder *b, uint32_t lo, uint32_t hi)
 	float clo[3] = {INFINITY, INFINITY, INFINITY}, chi[3] = {-INFINITY, -INFINITY, -INFINITY};
 	int ax = 0;
 
-	for (int k = 0; k < 3; k++) {
-		nd->lo[k] = INFINITY;
-		nd->hi[k] = -INFINITY;
-	}
-	for (uint32_t i = lo; i < hi; i++)
-		for (int k = 0; k < 3; k++) {
-			nd->lo[k] = fminf(nd->lo[k], pi->box[i][k]);
-			nd->hi[k] = fmaxf(nd->hi[k], pi->box[i][3 + k]);
-			clo[k] = fminf(clo[k], b->cen[i][k]);
-			chi[k] = fmaxf(chi[k], b->cen[i][k]);
-		}
 	if (hi - lo <= LEAF) {
+		leaf_box(pi, nd, lo, hi);
 		nd->a = lo;
 		nd->n = hi - lo;
 		return id;
 	}
+	/* A centroid that is NaN (a polygon of NaN vertices only) is passed
+	 * over, as fminf() and fmaxf() pass it over. */
+	for (uint32_t i = lo; i < hi; i++)
+		for (int k = 0; k < 3; k++) {
+			float c = b->cen[i][k];
+			clo[k] = c < clo[k] ? c : clo[k];
+			chi[k] = c > chi[k] ? c : chi[k];
+		}
 	for (int k = 1; k < 3; k++)
 		if (chi[k] - clo[k] > chi[ax] - clo[ax])
 			ax = k;
 	uint32_t mid = lo + (hi - lo) / 2;
 	select_mid(b, lo, hi, mid, ax);
 	nd->n = 0;
-	build_node(b, lo, mid);
-	uint32_t right = build_node(b, mid, hi);
-	pi->node[id].a = right;     /* node[] does not move: sized up front */
+	const pm_bvh_node *l = &pi->node[build_node(b, lo, mid)];
+	const pm_bvh_node *r = &pi->node[build_node(b, mid, hi)];
+	nd->a = (uint32_t)(r - pi->node);     /* node[] does not move: sized up front */
+	for (int k = 0; k < 3; k++) {
+		nd->lo[k] = r->lo[k] < l->lo[k] ? r->lo[k] : l->lo[k];
+		nd->hi[k] = r->hi[k] > l->hi[k] ? r->hi[k] : l->hi[k];
+	}
 	return id;
 }
 
@@ -193,14 +212,16 @@ pm_polyindex_build(pm_polyindex **out, const pm_scene *s, const pm_vec3 *verts,
 			pm_vec3 p = verts[s->poly_vert[v]];
 			for (int k = 0; k < 3; k++) {
 				float c = pm_vget(p, k);
-				bx[k] = fminf(bx[k], c);
-				bx[3 + k] = fmaxf(bx[3 + k], c);
+				/* fminf() and fmaxf() without the calls: a NaN
+				 * coordinate is passed over. */
+				bx[k] = c < bx[k] ? c : bx[k];
+				bx[3 + k] = c > bx[3 + k] ? c : bx[3 + k];
 			}
 		}
 		for (int k = 0; k < 3; k++) {
 			b.cen[j][k] = 0.5f * bx[k] + 0.5f * bx[3 + k];
-			lo[k] = fminf(lo[k], bx[k]);
-			hi[k] = fmaxf(hi[k], bx[3 + k]);
+			lo[k] = bx[k] < lo[k] ? bx[k] : lo[k];
+			hi[k] = bx[3 + k] > hi[k] ? bx[3 + k] : hi[k];
 		}
 		pi->prim[j++] = i;
 	}

@@ -420,6 +420,88 @@ TEST(smooth_patches)
 	pm_scene_free(&s);
 }
 
+/* The patches against every pair of polygons compared outright: a random
+ * soup over a 9 x 9 grid of heights (creased and flat by turns) and two
+ * flat triangles that meet at one corner only, in two objects at the same
+ * place. Two polygons of one object share a patch where a chain of pairs
+ * joins them, each pair meeting at a point with normals within
+ * PM_PATCH_COS; the patch's name is its lowest polygon. */
+static uint32_t
+root_of(uint32_t *up, uint32_t i)
+{
+	while (up[i] != i)
+		i = up[i];
+	return i;
+}
+
+TEST(smooth_patches_as_pairs_say)
+{
+	enum { G = 9 };
+	static char obj[64 * 1024];
+	size_t len = 0;
+	unsigned r = 12345;
+	double z[G][G];
+	pm_scene s;
+	pm_error err = {""};
+	uint32_t *patch;
+
+	for (int i = 0; i < G; i++)
+		for (int j = 0; j < G; j++) {
+			r = r * 1103515245u + 12345u;
+			z[i][j] = (i + j) % 3 == 0 ? 0 : (double)((r >> 16) % 7) / 6;
+		}
+	for (int i = 0; i + 1 < G; i++)
+		for (int j = 0; j + 1 < G; j++)
+			for (int t = 0; t < 2; t++) {
+				int a[3][2] = {{i, j}, {i + 1, j}, {i + 1, j + 1}}, b[3][2] = {{i, j}, {i + 1, j + 1}, {i, j + 1}};
+				for (int k = 0; k < 3; k++) {
+					int *q = t ? b[k] : a[k];
+					len += (size_t)snprintf(obj + len, sizeof obj - len, "v %d %d %.17g\n", q[0], q[1],
+					                        z[q[0]][q[1]]);
+				}
+				len += (size_t)snprintf(obj + len, sizeof obj - len, "f -3 -2 -1\n");
+			}
+	len += (size_t)snprintf(obj + len, sizeof obj - len, "v 20 0 0\nv 21 0 0\nv 21 1 0\nf -3 -2 -1\n"
+	                        "v 21 1 0\nv 22 1 0\nv 22 2 0\nf -3 -2 -1\n");
+	put("grid.obj", obj);
+	if (load(&s, "mesh grid.obj white\nmesh grid.obj white\n"))
+		return;
+	CHECK(pm_scene_patches(&s, &patch, &err) == 0);
+	uint32_t n = s.npolys, *up = malloc(n * sizeof *up);
+	for (uint32_t p = 0; p < n; p++)
+		up[p] = p;
+	for (uint32_t p = 0; p < n; p++)
+		for (uint32_t q = p + 1; q < n; q++) {
+			int meet = 0;
+			for (uint32_t a = s.poly_start[p]; a < s.poly_start[p + 1] && !meet; a++)
+				for (uint32_t b = s.poly_start[q]; b < s.poly_start[q + 1] && !meet; b++) {
+					pm_vec3 u = s.verts[s.poly_vert[a]], v = s.verts[s.poly_vert[b]];
+					meet = u.x == v.x && u.y == v.y && u.z == v.z;
+				}
+			if (!meet || s.poly_obj[p] != s.poly_obj[q] ||
+			    pm_dot(s.poly_normal[p], s.poly_normal[q]) < PM_PATCH_COS)
+				continue;
+			uint32_t rp = root_of(up, p), rq = root_of(up, q);
+			up[rp > rq ? rp : rq] = rp < rq ? rp : rq;
+		}
+	uint32_t npatch = 0, wrong = 0;
+	for (uint32_t p = 0; p < n; p++) {
+		wrong += patch[p] != root_of(up, p);
+		npatch += patch[p] == p;
+	}
+	CHECKF(wrong == 0, "%u of %u polygons in another patch than their pairs say", wrong, n);
+	/* Neither one patch nor none joined, and the two objects apart. */
+	CHECKF(npatch > 2 && npatch < n / 2, "%u patches of %u polygons", npatch, n);
+	const pm_object *g2 = &s.objs[s.nobjs - 1];
+	CHECKF(s.nobjs >= 2 && g2->npolys == n / 2 && patch[g2->first_poly] >= g2->first_poly,
+	       "the second grid's first polygon in patch %u", patch[g2->first_poly]);
+	CHECKF(patch[g2->first_poly + g2->npolys - 1] == g2->first_poly + g2->npolys - 2,
+	       "the triangles meeting at a corner apart");
+	free(up);
+	free(patch);
+	pm_scene_free(&s);
+}
+
 TEST(motion)
 {
 	pm_scene s;
@@ -766,6 +848,7 @@ main(void)
 	RUN(concave_polygon_ear_clipping);
 	RUN(nonplanar_face_split);
 	RUN(smooth_patches);
+	RUN(smooth_patches_as_pairs_say);
 	RUN(motion);
 	RUN(materials_strong_and_soft);
 	RUN(identity);
@@ -774,7 +857,7 @@ main(void)
 	RUN(example_cornell);
 	RUN(example_room);
 	static const char *const files[] = {"t.pms", "h.pms", "bad.pms", "cube.obj", "plane.obj",
-		"degen.obj", "cubein.obj", "ell.obj", "soup.obj", "bent.obj", "junk.obj", "junk.xyz", "cube.off", "cube.ply"};
+		"degen.obj", "cubein.obj", "ell.obj", "soup.obj", "grid.obj", "bent.obj", "junk.obj", "junk.xyz", "cube.off", "cube.ply"};
 	char path[300];
 	for (size_t i = 0; i < sizeof files / sizeof files[0]; i++) {
 		snprintf(path, sizeof path, "%s/%s", dir, files[i]);
