@@ -79,9 +79,10 @@ select_mid(builder *b, uint32_t lo, uint32_t hi, uint32_t mid, int ax)
 		swap_entries(b, lo, lo + 1);
 }
 
-/* Node id's box: the boxes of entries [lo, hi) at a leaf, its children's
- * together above (the same floats: a minimum of minima). Plain comparisons,
- * not fminf() and fmaxf(): those are calls, and no box holds a NaN. */
+/* A leaf's box, its entries' [lo, hi) together (an inner node's is its
+ * children's together: the same floats, a minimum of minima). Plain
+ * comparisons, not fminf() and fmaxf(): those are calls, and no box holds
+ * a NaN. */
 static void
 leaf_box(pm_polyindex *pi, pm_bvh_node *nd, uint32_t lo, uint32_t hi)
 {
