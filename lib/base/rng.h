@@ -42,6 +42,24 @@ static inline pm_rng pm_rng_seed(uint64_t seed, uint64_t key)
 	return r;
 }
 
+/* Uniform on 0 .. n - 1 (n > 0), exactly: Lemire's multiply-and-shift,
+ * drawing again in the few cases that would favour some values
+ * (Lemire 2019, "Fast random integer generation in an interval"). */
+static inline uint32_t pm_rng_below(pm_rng *r, uint32_t n)
+{
+	uint64_t m = (uint64_t)pm_rng_u32(r) * n;
+	uint32_t lo = (uint32_t)m;
+
+	if (lo < n) {
+		uint32_t t = (0u - n) % n;
+		while (lo < t) {
+			m = (uint64_t)pm_rng_u32(r) * n;
+			lo = (uint32_t)m;
+		}
+	}
+	return (uint32_t)(m >> 32);
+}
+
 /* Uniform in [0, 1): 24 random bits, so the result is exactly representable
  * and never rounds up to 1. */
 static inline float pm_rng_f(pm_rng *r)

@@ -41,19 +41,29 @@ light_blocked(const pm_direct *c, pm_vec3 o, pm_vec3 wi, float dist, pm_vec3 lp,
  * covered by the BSDF samples. */
 pm_vec3
 pm_direct_light(const pm_direct *c, pm_vec3 x, pm_vec3 ng, pm_vec3 n, pm_vec3 wo,
-                const pm_material *m, int nl, const pm_guide *gd, pm_rng *r)
+                const pm_material *m, int nl, const pm_guide *gd, const pm_strata *st, pm_rng *r)
 {
 	pm_vec3 sum = pm_v3(0, 0, 0);
-	int ga = (int)sqrtf((float)nl), gb = nl / ga;
+	int strata = st ? st->n : nl, ga = (int)sqrtf((float)strata), gb = strata / ga;
+	/* The choice among the lights in its own strata, a multiple of the
+	 * point's stratum (mod n: a prime's multiples run through them all),
+	 * so that the two do not go in step. */
+	uint32_t mul = st && st->n % 7919 != 0 ? 7919u : 1u;
 
 	for (int j = 0; j < nl; j++) {
 		pm_vec3 wi, li, f;
 		float dist, cosx, lpdf, w, cosl;
 		float u0 = pm_rng_f(r), u1 = pm_rng_f(r), u2 = pm_rng_f(r);
+		int g = j;
 
-		if (j < ga * gb && nl > 1) {
-			u1 = fminf(((float)(j % ga) + u1) / (float)ga, 0x1.fffffep-1f);
-			u2 = fminf(((float)(j / ga) + u2) / (float)gb, 0x1.fffffep-1f);
+		if (st) {
+			g = (int)(((uint32_t)st->first + (uint32_t)j + st->off) % (uint32_t)st->n);
+			uint32_t q = (uint32_t)(((uint64_t)g * mul + st->pick) % (uint64_t)st->n);
+			u0 = fminf(((float)q + u0) / (float)st->n, 0x1.fffffep-1f);
+		}
+		if (g < ga * gb && strata > 1) {
+			u1 = fminf(((float)(g % ga) + u1) / (float)ga, 0x1.fffffep-1f);
+			u2 = fminf(((float)(g / ga) + u2) / (float)gb, 0x1.fffffep-1f);
 		}
 		if (!pm_lights_sample_u(c->L, x, u0, u1, u2, &wi, &dist, &li, &lpdf, &cosl))
 			continue;

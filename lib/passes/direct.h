@@ -21,12 +21,25 @@ typedef struct pm_direct {
 	const pm_lights *L;
 } pm_direct;
 
+/* A pixel's shadow rays at its camera samples' first hits, stratified
+ * together: n strata of the lights' two point coordinates (a grid of
+ * floor(sqrt(n)) columns, the rest anywhere) and n of the choice among the
+ * lights, sample k's j-th ray in stratum first + j (first = k nl), both
+ * shifted by the pixel's random off and pick, so that each ray is uniform
+ * over the lights as an unstratified one is. */
+typedef struct pm_strata {
+	int first, n;
+	uint32_t off, pick;
+} pm_strata;
+
 /* The light-sampled part at x (geometric normal ng, shading normal n on
  * wo's side, material m): nl shadow rays, their points stratified over the
- * lights, each weighted against one BSDF sample of the same light, drawn
- * by pm_guide_mix with gd (BSDF alone if gd is NULL). */
+ * lights (in st's strata, or among the nl alone if st is NULL), each
+ * weighted against one BSDF sample of the same light, drawn by
+ * pm_guide_mix with gd (BSDF alone if gd is NULL). */
 pm_vec3 pm_direct_light(const pm_direct *c, pm_vec3 x, pm_vec3 ng, pm_vec3 n, pm_vec3 wo,
-                        const pm_material *m, int nl, const pm_guide *gd, pm_rng *r);
+                        const pm_material *m, int nl, const pm_guide *gd, const pm_strata *st,
+                        pm_rng *r);
 
 /* What a BSDF sample from x along wi reaches when only an emitter there
  * matters: 1 with *h the emitter's hit, else 0. With few emitting

@@ -33,7 +33,7 @@ direct_at(const pm_gather *g, const pm_hit *y, pm_vec3 n, pm_vec3 wo, const pm_m
           pm_rng *r)
 {
 	pm_direct dl = {g->s, g->a, g->L};
-	pm_vec3 sum = pm_direct_light(&dl, y->p, y->ng, n, wo, m, 1, NULL, r);
+	pm_vec3 sum = pm_direct_light(&dl, y->p, y->ng, n, wo, m, 1, NULL, NULL, r);
 	pm_scatter bs;
 
 	if (pm_bsdf_sample_rn(m, y->ng, n, wo, r, &bs) == 0)

@@ -56,14 +56,15 @@ typedef struct ctx {
  * each smooth patch it sees (up to PX_SLOTS of them), reused by its later
  * camera samples that land on the same patch (opts.estimate_once; a
  * polygon, or the facets of one curved surface, scene/patch.h): the
- * samples are independent and uniform over the pixel, so the first one on
- * a patch is uniform over the pixel's footprint on that patch, and the
- * pixel's expected value is unchanged, provided that whether it is reused
- * does not depend on that point (the patches are fixed before any
- * sample). Across an edge a pixel sees several patches, in any order:
- * keeping one estimate for the whole pixel made every sample on another
- * patch estimate anew, up to 8 estimates a pixel there (thin: 110 960
- * estimates for 65 536 pixels, the expensive ones of several polygons).
+ * samples are each uniform over the pixel and exchangeable (pixel_order()),
+ * so that, given where they all fall, the first one on a patch is any of
+ * those on it with equal chance, and the pixel's expected value is
+ * unchanged, provided that whether it is reused does not depend on that
+ * point (the patches are fixed before any sample). Across an edge a pixel
+ * sees several patches, in any order: keeping one estimate for the whole
+ * pixel made every sample on another patch estimate anew, up to 8
+ * estimates a pixel there (thin: 110 960 estimates for 65 536 pixels, the
+ * expensive ones of several polygons).
  * Reuse pays where the estimate's support covers about the area of the
  * pixel's footprint: the square around a disc as large as the support
  * (2 info.disc across; the compensated cube counts as the disc of its
@@ -80,6 +81,16 @@ typedef struct ctx {
  * kept dim estimates (wide support) and diluted bright ones (narrow
  * support), and a caustic read 10 % dark. */
 #define PX_SLOTS 4
+/* A pixel's camera samples fall one to a cell of a ga x gb grid over it
+ * (ga = floor(sqrt(spp)), gb = spp / ga; those past ga gb anywhere), which
+ * takes the noise of what the pixel covers (a lamp's edge, a thin part's)
+ * down faster than independent points. The cells are taken in an order
+ * drawn afresh for each pixel, every order as likely, so the samples are
+ * exchangeable: what sharing an estimate needs (above), as independent
+ * samples are. In cells, taken in order, the first on a patch would favour
+ * the top of the pixel. Up to PX_CELLS_MAX samples a pixel; past that they
+ * are independent. */
+#define PX_CELLS_MAX 4096
 /* A path's specular bounces before the surface it takes an estimate on:
  * each a polygon and whether the path crossed it (refraction), if all of
  * them were mirrors or glass whose weights are untextured, so that every
@@ -123,6 +134,7 @@ typedef struct pxcache {
 	uint32_t gpoly;
 	pm_guide gd;
 	int k;                /* the camera sample being traced */
+	pm_strata st;         /* the shadow rays at its first hits (n 0: none) */
 } pxcache;
 
 static int
@@ -297,8 +309,10 @@ walk(const ctx *c, void *sc, pm_vec3 o, pm_vec3 d, int depth, pm_vec3 beta, pm_v
 			}
 			g = slot;
 		}
-		if (m->kind == PM_MAT_DIFFUSE || m->kind == PM_MAT_GLOSSY)
-			*here = pm_add(*here, pm_mul(beta, pm_direct_light(&c->dl, h.p, h.ng, n, wo, m, nl, g, r)));
+		if (m->kind == PM_MAT_DIFFUSE || m->kind == PM_MAT_GLOSSY) {
+			const pm_strata *st = depth == 0 && pc && pc->st.n ? &pc->st : NULL;
+			*here = pm_add(*here, pm_mul(beta, pm_direct_light(&c->dl, h.p, h.ng, n, wo, m, nl, g, st, r)));
+		}
 		if ((g ? pm_guide_mix(g, m, h.ng, n, wo, r, &bs) : pm_bsdf_sample_rn(m, h.ng, n, wo, r, &bs)) != 0)
 			bs.pdf = -1;
 		if (ends) {
@@ -391,6 +405,34 @@ finite_sample(const sample *s)
 	return pm_vfinite(s->direct) && pm_vfinite(s->indirect) && pm_vfinite(s->specular);
 }
 
+/* A uniformly random order of a pixel's n cells (n <= PX_CELLS_MAX): the
+ * inside-out shuffle (Durstenfeld 1964). */
+static void
+pixel_order(pm_rng *r, int n, int *order)
+{
+	for (int k = 0; k < n; k++) {
+		int q = (int)pm_rng_below(r, (uint32_t)k + 1);
+		if (q != k)
+			order[k] = order[q];
+		order[q] = k;
+	}
+}
+
+/* Camera sample k's point in its pixel, in [0, 1)^2: in cell order[k] of
+ * the pixel's grid, or anywhere. */
+static void
+pixel_point(const int *order, int spp, int k, pm_rng *r, float *u, float *v)
+{
+	int ga = (int)sqrtf((float)spp), gb = spp / ga, c = spp <= PX_CELLS_MAX ? order[k] : ga * gb;
+
+	*u = pm_rng_f(r);
+	*v = pm_rng_f(r);
+	if (c < ga * gb) {
+		*u = fminf(((float)(c % ga) + *u) / (float)ga, 0x1.fffffep-1f);
+		*v = fminf(((float)(c / ga) + *v) / (float)gb, 0x1.fffffep-1f);
+	}
+}
+
 /* 1 if f's vertices are the scene's at time 0: at time 0, or where no
  * object moves. */
 static int
@@ -472,7 +514,7 @@ pm_render(const pm_frame *f, const pm_photons *map, const pm_render_opts *o,
 			fail = 1;
 		#pragma omp for schedule(dynamic, 1)
 		for (int y = 0; y < H; y++) {
-			int nword = 0;
+			int nword = 0, order[PX_CELLS_MAX];
 			uint32_t wkey[PX_SLOTS] = {0};
 			unsigned char wok[PX_SLOTS] = {0};
 			if (fail)
@@ -491,11 +533,20 @@ pm_render(const pm_frame *f, const pm_photons *map, const pm_render_opts *o,
 				pc.nword = nword;
 				memcpy(pc.wkey, wkey, sizeof wkey);
 				memcpy(pc.wok, wok, sizeof wok);
+				pc.st.n = 0;
+				if (o->spp <= PX_CELLS_MAX) {
+					pixel_order(&r, o->spp, order);
+					pc.st.n = o->spp * c.light_samples;
+					pc.st.off = pm_rng_below(&r, (uint32_t)pc.st.n);
+					pc.st.pick = pm_rng_below(&r, (uint32_t)pc.st.n);
+				}
 				for (int k = 0; k < o->spp; k++) {
 					sample smp;
+					float u, v;
 					pc.k = k;
-					float sx = (float)x + pm_rng_f(&r), sy = (float)y + pm_rng_f(&r);
-					trace(&c, sc, cam.eye, pm_camera_dir(&cam, sx, sy), &r, &smp, &pc);
+					pc.st.first = k * c.light_samples;
+					pixel_point(order, o->spp, k, &r, &u, &v);
+					trace(&c, sc, cam.eye, pm_camera_dir(&cam, (float)x + u, (float)y + v), &r, &smp, &pc);
 					if (!finite_sample(&smp))
 						continue;
 					dsum = pm_add(dsum, smp.direct);
