@@ -9,6 +9,7 @@
 #ifndef PM_RNG_H
 #define PM_RNG_H
 
+#include <math.h>
 #include <stdint.h>
 
 typedef struct { uint64_t state, inc; } pm_rng;
@@ -65,6 +66,25 @@ static inline uint32_t pm_rng_below(pm_rng *r, uint32_t n)
 static inline float pm_rng_f(pm_rng *r)
 {
 	return (float)(pm_rng_u32(r) >> 8) * (1.0f / 16777216.0f);
+}
+
+/* Stratified sampling over [0, 1)^2 in n cells: a grid of ga = floor(sqrt n)
+ * columns and gb = n / ga rows (any of the n past ga gb are not cells). */
+static inline void pm_cells(int n, int *ga, int *gb)
+{
+	*ga = n > 0 ? (int)sqrtf((float)n) : 1;
+	*gb = n / *ga;
+}
+
+/* (u, v), uniform in [0, 1)^2, moved into cell c of the ga x gb grid
+ * (column c % ga, row c / ga), uniform there; a c past the grid leaves them
+ * where they are. */
+static inline void pm_cell_point(int c, int ga, int gb, float *u, float *v)
+{
+	if (c >= 0 && c < ga * gb) {
+		*u = fminf(((float)(c % ga) + *u) / (float)ga, 0x1.fffffep-1f);
+		*v = fminf(((float)(c / ga) + *v) / (float)gb, 0x1.fffffep-1f);
+	}
 }
 
 #endif

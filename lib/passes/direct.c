@@ -44,11 +44,13 @@ pm_direct_light(const pm_direct *c, pm_vec3 x, pm_vec3 ng, pm_vec3 n, pm_vec3 wo
                 const pm_material *m, int nl, const pm_guide *gd, const pm_strata *st, pm_rng *r)
 {
 	pm_vec3 sum = pm_v3(0, 0, 0);
-	int strata = st ? st->n : nl, ga = (int)sqrtf((float)strata), gb = strata / ga;
+	int strata = st ? st->n : nl, ga, gb;
 	/* The choice among the lights in its own strata, a multiple of the
 	 * point's stratum (mod n: a prime's multiples run through them all),
 	 * so that the two do not go in step. */
 	uint32_t mul = st && st->n % 7919 != 0 ? 7919u : 1u;
+
+	pm_cells(strata, &ga, &gb);
 
 	for (int j = 0; j < nl; j++) {
 		pm_vec3 wi, li, f;
@@ -61,10 +63,8 @@ pm_direct_light(const pm_direct *c, pm_vec3 x, pm_vec3 ng, pm_vec3 n, pm_vec3 wo
 			uint32_t q = (uint32_t)(((uint64_t)g * mul + st->pick) % (uint64_t)st->n);
 			u0 = fminf(((float)q + u0) / (float)st->n, 0x1.fffffep-1f);
 		}
-		if (g < ga * gb && strata > 1) {
-			u1 = fminf(((float)(g % ga) + u1) / (float)ga, 0x1.fffffep-1f);
-			u2 = fminf(((float)(g / ga) + u2) / (float)gb, 0x1.fffffep-1f);
-		}
+		if (strata > 1)
+			pm_cell_point(g, ga, gb, &u1, &u2);
 		if (!pm_lights_sample_u(c->L, x, u0, u1, u2, &wi, &dist, &li, &lpdf, &cosl))
 			continue;
 		cosx = pm_dot(wi, n);

@@ -423,14 +423,12 @@ pixel_order(pm_rng *r, int n, int *order)
 static void
 pixel_point(const int *order, int spp, int k, pm_rng *r, float *u, float *v)
 {
-	int ga = (int)sqrtf((float)spp), gb = spp / ga, c = spp <= PX_CELLS_MAX ? order[k] : ga * gb;
+	int ga, gb;
 
+	pm_cells(spp, &ga, &gb);
 	*u = pm_rng_f(r);
 	*v = pm_rng_f(r);
-	if (c < ga * gb) {
-		*u = fminf(((float)(c % ga) + *u) / (float)ga, 0x1.fffffep-1f);
-		*v = fminf(((float)(c / ga) + *v) / (float)gb, 0x1.fffffep-1f);
-	}
+	pm_cell_point(spp <= PX_CELLS_MAX ? order[k] : ga * gb, ga, gb, u, v);
 }
 
 /* 1 if f's vertices are the scene's at time 0: at time 0, or where no
