@@ -419,13 +419,10 @@ pixel_order(pm_rng *r, int n, int *order)
 }
 
 /* Camera sample k's point in its pixel, in [0, 1)^2: in cell order[k] of
- * the pixel's grid, or anywhere. */
+ * the pixel's ga x gb grid (pm_cells() of spp), or anywhere. */
 static void
-pixel_point(const int *order, int spp, int k, pm_rng *r, float *u, float *v)
+pixel_point(const int *order, int spp, int ga, int gb, int k, pm_rng *r, float *u, float *v)
 {
-	int ga, gb;
-
-	pm_cells(spp, &ga, &gb);
 	*u = pm_rng_f(r);
 	*v = pm_rng_f(r);
 	pm_cell_point(spp <= PX_CELLS_MAX ? order[k] : ga * gb, ga, gb, u, v);
@@ -504,7 +501,8 @@ pm_render(const pm_frame *f, const pm_photons *map, const pm_render_opts *o,
 		c.patch = patch;
 	c.every = o->estimate_once && o->past_glossy > 1 ? o->past_glossy : 1;
 	c.every_w = (float)o->spp / (float)((o->spp + c.every - 1) / c.every);
-	int rows_done = 0;
+	int rows_done = 0, cga, cgb;
+	pm_cells(o->spp, &cga, &cgb);
 	#pragma omp parallel reduction(|:fail)
 	{
 		void *sc = est->scratch_new ? est->scratch_new(o->k) : NULL;
@@ -543,7 +541,7 @@ pm_render(const pm_frame *f, const pm_photons *map, const pm_render_opts *o,
 					float u, v;
 					pc.k = k;
 					pc.st.first = k * c.light_samples;
-					pixel_point(order, o->spp, k, &r, &u, &v);
+					pixel_point(order, o->spp, cga, cgb, k, &r, &u, &v);
 					trace(&c, sc, cam.eye, pm_camera_dir(&cam, (float)x + u, (float)y + v), &r, &smp, &pc);
 					if (!finite_sample(&smp))
 						continue;

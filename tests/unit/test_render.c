@@ -49,22 +49,30 @@ static const char scene[] =
  * render_count() was asked for them. */
 static float spec_lo, spec_hi;
 
+/* Renders s with o at time 0 into *img: 0, or -1 after a check failed. */
+static int
+render_with(const pm_scene *s, const pm_render_opts *o, pm_image *img)
+{
+	pm_frame f;
+	pm_error err = {""};
+
+	CHECKF(pm_frame_build(&f, s, 0, 0, &err) == 0, "%s", err.msg);
+	if (err.msg[0])
+		return -1;
+	CHECKF(pm_render(&f, NULL, o, img, &err) == 0, "%s", err.msg);
+	pm_frame_free(&f);
+	return err.msg[0] ? -1 : 0;
+}
+
 static long
 render_count_past(const pm_scene *s, int once, int spp, int past)
 {
-	pm_frame f;
 	pm_image img;
-	pm_error err = {""};
 	pm_render_opts o = {.estimator = &count_row, .k = 50, .spp = spp, .light_samples = 1,
 	                    .estimate_once = once, .past_glossy = past, .seed = 7};
 
 	atomic_store(&made, 0);
-	CHECKF(pm_frame_build(&f, s, 0, 0, &err) == 0, "%s", err.msg);
-	if (err.msg[0])
-		return -1;
-	CHECKF(pm_render(&f, NULL, &o, &img, &err) == 0, "%s", err.msg);
-	pm_frame_free(&f);
-	if (err.msg[0])
+	if (render_with(s, &o, &img) != 0)
 		return -1;
 	size_t npx = (size_t)img.width * img.height;
 	spec_lo = INFINITY;
@@ -197,21 +205,13 @@ static const char diagonal_scene[] =
 static float *
 render_total(const pm_scene *s, int spp, uint64_t seed)
 {
-	pm_frame f;
 	pm_image img;
-	pm_error err = {""};
 	pm_render_opts o = {.estimator = &count_row, .k = 50, .spp = spp, .light_samples = 1,
 	                    .estimate_once = 1, .past_glossy = 1, .seed = seed};
 	float *v = malloc(64 * sizeof *v);
 
-	CHECKF(pm_frame_build(&f, s, 0, 0, &err) == 0, "%s", err.msg);
-	if (err.msg[0] || !v) {
-		free(v);
-		return NULL;
-	}
-	CHECKF(pm_render(&f, NULL, &o, &img, &err) == 0, "%s", err.msg);
-	pm_frame_free(&f);
-	if (err.msg[0]) {
+	CHECK(v != NULL);
+	if (!v || render_with(s, &o, &img) != 0) {
 		free(v);
 		return NULL;
 	}
@@ -305,22 +305,16 @@ lamp_irradiance(double x, double y)
 TEST(shadow_rays_of_a_pixel_stratified_together)
 {
 	pm_scene s;
-	pm_frame f;
 	pm_image img;
-	pm_error err = {""};
 	pm_render_opts o = {.estimator = pm_estimator_find("path"), .k = 50, .spp = 16, .light_samples = 4,
 	                    .estimate_once = 1, .past_glossy = 1, .seed = 3};
 	double sum = 0, sum2 = 0;
 
 	if (load(&s, "lamp.pms", lamp_scene) != 0)
 		return;
-	CHECKF(pm_frame_build(&f, &s, 0, 0, &err) == 0, "%s", err.msg);
-	if (err.msg[0])
-		return;
-	CHECKF(pm_render(&f, NULL, &o, &img, &err) == 0, "%s", err.msg);
-	pm_frame_free(&f);
+	int bad = render_with(&s, &o, &img);
 	pm_scene_free(&s);
-	if (err.msg[0])
+	if (bad)
 		return;
 	for (int y = 0; y < 8; y++)
 		for (int x = 0; x < 8; x++) {
