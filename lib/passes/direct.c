@@ -48,7 +48,11 @@ pm_direct_light(const pm_direct *c, pm_vec3 x, pm_vec3 ng, pm_vec3 n, pm_vec3 wo
 	/* The choice among the lights in its own strata, a multiple of the
 	 * point's stratum (mod n: a prime's multiples run through them all),
 	 * so that the two do not go in step. */
-	uint32_t mul = st && st->n % 7919 != 0 ? 7919u : 1u;
+	uint32_t mul = st && st->n % 7919 != 0 ? 7919u : 1u, ns = st ? (uint32_t)st->n : 1;
+	/* Ray j's two strata, stepped from ray to ray: the same numbers as
+	 * (first + off + j) mod n and its multiple, without two divisions a ray. */
+	uint32_t gs = st ? (uint32_t)(((uint64_t)st->first + st->off) % ns) : 0;
+	uint32_t qs = (uint32_t)(((uint64_t)gs * mul + (st ? st->pick : 0)) % ns), step = mul % ns;
 
 	pm_cells(strata, &ga, &gb);
 
@@ -59,9 +63,10 @@ pm_direct_light(const pm_direct *c, pm_vec3 x, pm_vec3 ng, pm_vec3 n, pm_vec3 wo
 		int g = j;
 
 		if (st) {
-			g = (int)(((uint32_t)st->first + (uint32_t)j + st->off) % (uint32_t)st->n);
-			uint32_t q = (uint32_t)(((uint64_t)g * mul + st->pick) % (uint64_t)st->n);
-			u0 = fminf(((float)q + u0) / (float)st->n, 0x1.fffffep-1f);
+			g = (int)gs;
+			u0 = fminf(((float)qs + u0) / (float)st->n, 0x1.fffffep-1f);
+			gs = gs + 1 == ns ? 0 : gs + 1;
+			qs = qs + step >= ns ? qs + step - ns : qs + step;
 		}
 		if (strata > 1)
 			pm_cell_point(g, ga, gb, &u1, &u2);

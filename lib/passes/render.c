@@ -433,7 +433,9 @@ pixel_point(const int *order, int spp, int ga, int gb, int k, pm_rng *r, float *
 static int
 unmoved(const pm_frame *f)
 {
-	for (int o = 0; o < f->s->nobjs && f->time != 0; o++) {
+	if (f->time == 0)
+		return 1;
+	for (int o = 0; o < f->s->nobjs; o++) {
 		pm_vec3 m = f->s->objs[o].motion;
 		if (m.x != 0 || m.y != 0 || m.z != 0)
 			return 0;
