@@ -3,7 +3,7 @@
  * "no cliff"): estimates at the camera's first photon-surface hits (pixel
  * centres), one thread, each timed alone (thread CPU time).
  *
- *   compcost [-c CAST_AT] [-f POLYS] [-n PHOTONS] [-k K] [-r RUNS] [-o FILE] [-p LO,HI] SCENE
+ *   compcost [-c CAST_AT] [-f POLYS] [-n PHOTONS] [-k K] [-r RUNS] [-o FILE] [-p LO,HI[,GROUPS]] SCENE
  *   compcost -t SCENE      (prints the scene's triangles and stops)
  *
  * Prints "name<TAB>value" lines: the median over RUNS of the mean time per
@@ -22,8 +22,9 @@
  * (pm_comp_stats), for plots and for comparing two builds estimate by
  * estimate. -c sets the compensated estimate's CAST_AT (pm_comp_cast_at,
  * compensate.h), which changes its time, not its answers. -p runs the
- * compensated estimates whose cubes hold LO to HI polygons five times
- * more in profile_range(), for a profiler to count those alone:
+ * compensated estimates whose cubes hold LO to HI polygons (and, with
+ * GROUPS, that many groups) five times more in profile_range(), for a
+ * profiler to count those alone:
  *   valgrind --tool=callgrind --collect-atstart=no \
  *       --toggle-collect=profile_range compcost -r 1 -p 32,100000 SCENE */
 #include <float.h>
@@ -77,7 +78,7 @@ bin_of(int polys)
 static int
 usage(void)
 {
-	fprintf(stderr, "usage: compcost [-c CAST_AT] [-f POLYS] [-n PHOTONS] [-k K] [-r RUNS] [-o FILE] [-p LO,HI] SCENE\n");
+	fprintf(stderr, "usage: compcost [-c CAST_AT] [-f POLYS] [-n PHOTONS] [-k K] [-r RUNS] [-o FILE] [-p LO,HI[,GROUPS]] SCENE\n");
 	return 2;
 }
 
@@ -104,7 +105,7 @@ main(int argc, char **argv)
 	long nph = 200000;
 	int k = 50, runs = 3, c, tris_only = 0;
 	const char *out = NULL;
-	int plo = -1, phi = -1;
+	int plo = -1, phi = -1, pgr = 0;
 	pm_scene s;
 	pm_frame fr;
 	pm_camera cam;
@@ -118,8 +119,8 @@ main(int argc, char **argv)
 		case 'n': nph = atol(optarg); break;
 		case 'o': out = optarg; break;
 		case 'p':
-			if (sscanf(optarg, "%d,%d", &plo, &phi) != 2 || plo < 1 || phi < plo) {
-				fprintf(stderr, "compcost: -p wants LO,HI polygons, 1 <= LO <= HI\n");
+			if (sscanf(optarg, "%d,%d,%d", &plo, &phi, &pgr) < 2 || plo < 1 || phi < plo || pgr < 0) {
+				fprintf(stderr, "compcost: -p wants LO,HI[,GROUPS]: polygons 1 <= LO <= HI, and groups (0: any)\n");
 				return 2;
 			}
 			break;
@@ -179,7 +180,7 @@ main(int argc, char **argv)
 	int *ngrp = malloc((size_t)ne * sizeof *ngrp), *nfc = malloc((size_t)ne * sizeof *nfc);
 	pm_vec3 *L = malloc((size_t)ne * sizeof *L);
 	double tv[99], tw[99], sink = 0;
-	long nfl = 0, efl = 0, nwh = 0, nsm = 0;
+	long nfl = 0, efl = 0, nwh = 0, nsm = 0, nsn = 0, esn = 0;
 	if (!nn || !sc || !tcl || !tco || !polys || !nsam || !ngrp || !nfc || !L)
 		die(path, "out of memory");
 	for (long j = 0; j < ne; j++)
@@ -209,6 +210,8 @@ main(int argc, char **argv)
 				efl += pm_comp_last(sc)->floored > 0;
 				nwh += pm_comp_last(sc)->whole;
 				nsm += pm_comp_last(sc)->sampled;
+				nsn += pm_comp_last(sc)->nodes;
+				esn += pm_comp_last(sc)->nodes > 0;
 			}
 		}
 		tw[i] = cpu_now() - t0;
@@ -218,7 +221,7 @@ main(int argc, char **argv)
 		if (!sel)
 			die(path, "out of memory");
 		for (long j = 0; j < ne; j++)
-			if (polys[j] >= plo && polys[j] <= phi)
+			if (polys[j] >= plo && polys[j] <= phi && (pgr == 0 || ngrp[j] == pgr))
 				sel[nsel++] = j;
 		fprintf(stderr, "compcost: profile_range: %ld estimates of %d to %d polygons, 5 times\n", nsel, plo, phi);
 		sink += profile_range(fr.pi, &ph, sel, nsel, hx, hn, hw, hm, k, sc);
@@ -240,6 +243,7 @@ main(int argc, char **argv)
 	printf("checksum\t%016llx\n", (unsigned long long)hsh);
 	printf("floored\t%ld photons in %ld estimates\n", nfl, efl);
 	printf("sampled\t%ld polygons; %ld more hidden whole, unsampled\n", nsm, nwh);
+	printf("sheet_nodes\t%ld estimates of one sheet from %ld index nodes\n", esn, nsn);
 	/* Per bin also the classical estimates' mean at the same points, and
 	 * the bin's share of what the compensated ones cost over them: where
 	 * the price comes from, which the means alone hide (many cheap

@@ -125,6 +125,7 @@ int pm_comp_exact_overlap = 1;
 int pm_comp_shadow_from = 6;
 int pm_comp_fronts_wait = 1;
 int pm_comp_hidden_whole = 1;
+int pm_comp_sheet_nodes = 1;
 #define IDX(e) ((e) & (FRONT - 1))
 
 typedef struct cpoly {
@@ -2500,6 +2501,589 @@ one_polygon(pm_comp_scratch *sc, const pm_vec3 *pos, pm_dvec3 xd, pm_dvec3 nd, d
 	}
 }
 
+/* The sides of P that the tests need, once it is found: the side that
+ * counts (see compensate.h), lying on x's plane; with all, also whether x
+ * lies on it, and the rest of what pair_lists() and sample() fill in
+ * cleared. */
+static void
+sides(pm_comp_scratch *sc, cpoly *P, pm_dvec3 xo, pm_dvec3 n, double eps, int all)
+{
+	double sxo = pm_ddot(P->N, xo) - P->d;
+
+	P->Ne = P->solid || sxo >= 0 ? P->N : pm_dscale(P->N, -1);
+	P->de = pm_ddot(P->Ne, P->N) * P->d;
+	P->xpar = fabs(pm_ddot(P->N, n)) >= 1 - PARALLEL_EPS && fabs(P->d) <= eps;
+	P->aopen = P->A;
+	if (!all)
+		return;
+	P->xon = fabs(P->d) <= eps && inside(sc, P, pm_dv3(0, 0, 0), eps, 1);
+	P->unseen = 0;
+	P->convex = 0;
+	P->nfc = P->ndyn = 0;
+	P->adyn = 0;
+	P->lit = 0;
+}
+
+/* ---- A cube of one sheet, from the polygon index's nodes ----
+ *
+ * Where the cube holds one sheet that x lies on and x' sees whole (a
+ * curved mesh's facets around x, hundreds of them where photons are
+ * sparse), the general path's answer is a sum over the facets that face
+ * each photon: nothing hides, no fate differs. An index node wholly
+ * inside the cube adds its facets' sum of A N at once (pm_bvh_agg), and
+ * only the facets the cube's faces cut, and those near x, are clipped
+ * one by one. Each condition the general path would find polygon by
+ * polygon is shown for a whole node by its box and its cone of normals,
+ * with margins past rounding; where one cannot be shown, or the cube is
+ * not one sheet, the general path runs. The answers are the general
+ * path's up to rounding (sums in another order, areas from the absolute
+ * vertices): test_compensate, sheet_nodes_as_polygons_say. */
+
+/* Nodes taken whole in one cube at most (a cube of a few thousand facets
+ * takes tens). */
+#define AGG_MAX 512
+
+/* cos(a + t) and cos(a - t) for the angle a with cosine ca and the cone
+ * angle t with cosine ct, both in [0, pi]. */
+static inline void
+cos_sum(double ca, double ct, double *plus, double *minus)
+{
+	ca = ca > 1 ? 1 : ca < -1 ? -1 : ca;
+	ct = ct > 1 ? 1 : ct < -1 ? -1 : ct;
+	double sa = sqrt(1 - ca * ca), st = sqrt(1 - ct * ct);
+	/* a + t >= pi where cos a <= cos(pi - t); a <= t where cos a >= cos t. */
+	*plus = ca <= -ct ? -1 : ca * ct - sa * st;
+	*minus = ca >= ct ? 1 : ca * ct + sa * st;
+}
+
+/* Node box relative to x (lo xyz, hi xyz). */
+static inline void
+node_rel(const pm_bvh_node *nd, pm_dvec3 x, double b[6])
+{
+	double c[3] = {x.x, x.y, x.z};
+	for (int k = 0; k < 3; k++) {
+		b[k] = (double)nd->lo[k] - c[k];
+		b[3 + k] = (double)nd->hi[k] - c[k];
+	}
+}
+
+/* The least and the largest of M . v over box b. */
+static inline void
+box_dot(const double b[6], pm_dvec3 M, double *lo, double *hi)
+{
+	double m[3] = {M.x, M.y, M.z}, l = 0, u = 0;
+	for (int k = 0; k < 3; k++) {
+		double p = m[k] * b[k], q = m[k] * b[3 + k];
+		l += p < q ? p : q;
+		u += p > q ? p : q;
+	}
+	*lo = l;
+	*hi = u;
+}
+
+/* 1 if every facet under the node (box b, cone A) has x' on its front by
+ * more than m: N . (x' - v) for v in the box and N in the cone is at
+ * least M . (x' - v) - |N - M| |x' - v|. */
+static int
+node_front(const double b[6], const pm_bvh_agg *A, pm_dvec3 xo, double m)
+{
+	double lo, hi, w2 = 0, o[3] = {xo.x, xo.y, xo.z};
+	box_dot(b, A->M, &lo, &hi);
+	for (int k = 0; k < 3; k++) {
+		double p = o[k] - b[k], q = o[k] - b[3 + k];
+		w2 += p * p > q * q ? p * p : q * q;
+	}
+	return pm_ddot(A->M, xo) - hi - sqrt(dmax(0, 2 - 2 * A->cmin)) * sqrt(w2) > m;
+}
+
+/* Whether node id can be taken whole in this cube: wholly inside it (and
+ * off the open cube's face slabs: box in), away from x (no facet x lies
+ * on: box near), one patch and one object, no facet parallel to n (x's
+ * plane). in and near are float boxes rounded inward and outward, so the
+ * tests on the node's float box are conservative. */
+static int
+node_whole(const pm_polyindex *pi, uint32_t id, const float in[6], const float near[6], pm_dvec3 n)
+{
+	const pm_bvh_node *nd = &pi->node[id];
+	const pm_bvh_agg *A;
+	double cp, cm;
+
+	if (!(nd->lo[0] > in[0] && nd->lo[1] > in[1] && nd->lo[2] > in[2] &&
+	      nd->hi[0] < in[3] && nd->hi[1] < in[4] && nd->hi[2] < in[5]) ||
+	    pm_polyindex_overlaps(nd->lo, nd->hi, near))
+		return 0;
+	A = &pi->agg[id];
+	if (A->patch == PM_AGG_MIXED || A->obj < 0 || A->count < 2 || A->cmin < -1)
+		return 0;
+	cos_sum(fabs(pm_ddot(A->M, n)), A->cmin, &cp, &cm);
+	return cm < 1 - 2 * PARALLEL_EPS;
+}
+
+/* The float boxes node_whole() tests against: the cube less the open
+ * cube's margin, rounded in, and x's neighbourhood of 2 eps, rounded out.
+ * A move of 2^-22 of the value before rounding to float outweighs the
+ * rounding (at most 2^-24 of it). */
+static void
+whole_boxes(const visit_ctx *q, double eps, float in[6], float near[6])
+{
+	double c[3] = {q->x.x, q->x.y, q->x.z}, m = q->h - (q->open ? 0.5 * q->tau : 0);
+
+	for (int k = 0; k < 3; k++) {
+		double a = c[k] - m, b = c[k] + m, u = c[k] - 2 * eps, v = c[k] + 2 * eps;
+		in[k] = (float)(a + fabs(a) * 0x1p-22);
+		in[3 + k] = (float)(b - fabs(b) * 0x1p-22);
+		near[k] = (float)(u - fabs(u) * 0x1p-22);
+		near[3 + k] = (float)(v + fabs(v) * 0x1p-22);
+	}
+}
+
+/* Clips into sc->g the entries under node id0 that meet box, in the
+ * order pm_polyindex_cube() visits them; -1 out of room. */
+static int
+clip_node(pm_comp_scratch *sc, visit_ctx *q, int id0, const float box[6])
+{
+	const pm_polyindex *pi = q->pi;
+	uint32_t stack[80];
+	int top = 0;
+
+	stack[top++] = (uint32_t)id0;
+	while (top > 0) {
+		const pm_bvh_node *nd = &pi->node[stack[--top]];
+		if (nd->n > 0) {
+			for (uint32_t i = nd->a; i < nd->a + nd->n; i++)
+				if (pm_polyindex_overlaps(pi->box[i], pi->box[i] + 3, box))
+					visit(q, pi->prim[i]);
+			if (sc->oom)
+				return -1;
+			continue;
+		}
+		if (top + 2 > (int)(sizeof stack / sizeof *stack))
+			return -1;
+		uint32_t l = (uint32_t)(nd - pi->node) + 1;
+		if (pm_polyindex_overlaps(pi->node[nd->a].lo, pi->node[nd->a].hi, box))
+			stack[top++] = nd->a;
+		if (pm_polyindex_overlaps(pi->node[l].lo, pi->node[l].hi, box))
+			stack[top++] = l;
+	}
+	return 0;
+}
+
+/* 0 if the nodes agg[] and the entries ent[] together bend past
+ * SHEET_COS from their mean normal (whole polygons' areas; sheet_nodes()
+ * asks again of what the cube clips): the cube is then no one sheet,
+ * known before anything is clipped. */
+static int
+one_cone(const pm_polyindex *pi, const int *agg, int nagg, const int *ent, int ne)
+{
+	pm_dvec3 M = pm_dv3(0, 0, 0);
+	double l, cp, cm;
+
+	for (int i = 0; i < nagg; i++)
+		M = pm_dadd(M, pi->agg[agg[i]].V);
+	for (int i = 0; i < ne; i++)
+		M = pm_dadd(M, pm_dscale(pi->pn[ent[i]], pi->pa[ent[i]]));
+	l = pm_dlen(M);
+	if (!(l > 0) || !isfinite(l))
+		return 0;
+	M = pm_dscale(M, 1 / l);
+	for (int i = 0; i < nagg; i++) {
+		cos_sum(pm_ddot(M, pi->agg[agg[i]].M), pi->agg[agg[i]].cmin, &cp, &cm);
+		if (cp < SHEET_COS)
+			return 0;
+	}
+	for (int i = 0; i < ne; i++)
+		if (pm_ddot(M, pi->pn[ent[i]]) < SHEET_COS)
+			return 0;
+	return 1;
+}
+
+/* The cube's polygons: nodes taken whole into agg[], the rest clipped
+ * into sc->g by visit(), as long as they are of one patch. Where a second
+ * patch shows, no more nodes are taken, and those taken are clipped too,
+ * each where the walk met it (at[]), so that sc->g is what
+ * pm_polyindex_cube() finds; so too where the patch bends too far
+ * (one_cone()). The walk lists the entries to clip (in
+ * sc->bl) before clipping any. 1 for one patch, 2 where no node is left
+ * whole (sc->g is complete), 0 where there are too many nodes, -1 out of
+ * room. */
+static int
+sheet_walk(pm_comp_scratch *sc, visit_ctx *q, pm_dvec3 n, double eps, int *agg, int *nagg)
+{
+	const pm_polyindex *pi = q->pi;
+	uint32_t stack[80], patch = PM_AGG_MIXED;
+	int top = 0, mixed = 0, ne = 0, at[AGG_MAX];
+	float box[6], in[6], near[6];
+
+	*nagg = 0;
+	pm_polyindex_query_box(q->x, q->h, box);
+	whole_boxes(q, eps, in, near);
+	if (!pm_polyindex_overlaps(pi->node[0].lo, pi->node[0].hi, box))
+		return 2;
+	/* Children are tested before they are pushed, left before right, as
+	 * pm_polyindex_cube() does. */
+	stack[top++] = 0;
+	while (top > 0) {
+		uint32_t id = stack[--top];
+		for (;;) {
+			const pm_bvh_node *nd = &pi->node[id];
+			if (!mixed && node_whole(pi, id, in, near, n)) {
+				uint32_t p = pi->agg[id].patch;
+				mixed = patch != PM_AGG_MIXED && p != patch;
+				if (!mixed) {
+					if (*nagg == AGG_MAX)
+						return 0;
+					patch = p;
+					at[*nagg] = ne;
+					agg[(*nagg)++] = (int)id;
+					break;
+				}
+			}
+			if (nd->n > 0) {
+				if (!pm_grow((void **)&sc->bl, &sc->blcap, ne, (int)nd->n, sizeof *sc->bl))
+					return -1;
+				for (uint32_t i = nd->a; i < nd->a + nd->n; i++) {
+					if (!pm_polyindex_overlaps(pi->box[i], pi->box[i] + 3, box))
+						continue;
+					sc->bl[ne++] = (int)i;
+					uint32_t p = pi->patch[pi->prim[i]];
+					mixed |= patch != PM_AGG_MIXED && p != patch;
+					patch = p;
+				}
+				break;
+			}
+			int hl = pm_polyindex_overlaps(nd[1].lo, nd[1].hi, box),
+			    hr = pm_polyindex_overlaps(pi->node[nd->a].lo, pi->node[nd->a].hi, box);
+			if (hl && hr) {
+				if (top + 1 > (int)(sizeof stack / sizeof *stack))
+					return -1;
+				stack[top++] = nd->a;
+			}
+			if (hl)
+				id = id + 1;
+			else if (hr)
+				id = nd->a;
+			else
+				break;
+		}
+	}
+	mixed |= *nagg > 0 && !one_cone(pi, agg, *nagg, sc->bl, ne);
+	for (int k = 0, a = 0; k <= ne; k++) {
+		for (; mixed && a < *nagg && at[a] == k; a++)
+			if (clip_node(sc, q, agg[a], box) < 0)
+				return -1;
+		if (k < ne)
+			visit(q, pi->prim[sc->bl[k]]);
+		if (sc->oom)
+			return -1;
+	}
+	if (mixed)
+		*nagg = 0;
+	return *nagg == 0 ? 2 : 1;
+}
+
+/* Sum of max(0, psi . N) A over the facets under node id: a node whose
+ * cone faces psi whole adds its V, one turned away nothing. */
+static double
+facing_nodes(const pm_polyindex *pi, int id0, pm_dvec3 psi)
+{
+	uint32_t stack[80];
+	int top = 0;
+	double A = 0;
+
+	stack[top++] = (uint32_t)id0;
+	while (top > 0) {
+		uint32_t id = stack[--top];
+		const pm_bvh_node *nd = &pi->node[id];
+		const pm_bvh_agg *G = &pi->agg[id];
+		double cp, cm;
+		cos_sum(pm_ddot(psi, G->M), G->cmin, &cp, &cm);
+		if (G->cmin >= -1 && cp > 1e-12) {
+			A += pm_ddot(psi, G->V);
+			continue;
+		}
+		if (G->cmin >= -1 && cm < -1e-12)
+			continue;
+		if (nd->n > 0) {
+			for (uint32_t i = nd->a; i < nd->a + nd->n; i++)
+				A += dmax(0, pm_ddot(psi, pi->pn[i])) * pi->pa[i];
+			continue;
+		}
+		if (top + 2 > (int)(sizeof stack / sizeof *stack))
+			break;
+		stack[top++] = nd->a;
+		stack[top++] = id + 1;
+	}
+	return A;
+}
+
+/* Clips into sc->g the facets under node id0 whose boxes hold r (within
+ * tol), for a photon's planes, unseen as their node; -1 out of room. */
+static int
+nodes_at(pm_comp_scratch *sc, visit_ctx *q, int id0, int unseen, pm_dvec3 r, double tol)
+{
+	const pm_polyindex *pi = q->pi;
+	uint32_t stack[80];
+	int top = 0;
+
+	stack[top++] = (uint32_t)id0;
+	while (top > 0) {
+		uint32_t id = stack[--top];
+		const pm_bvh_node *nd = &pi->node[id];
+		double b[6];
+		node_rel(nd, q->x, b);
+		if (r.x < b[0] - tol || r.y < b[1] - tol || r.z < b[2] - tol ||
+		    r.x > b[3] + tol || r.y > b[4] + tol || r.z > b[5] + tol)
+			continue;
+		if (nd->n > 0) {
+			for (uint32_t i = nd->a; i < nd->a + nd->n; i++) {
+				int ng = sc->ng;
+				visit(q, pi->prim[i]);
+				if (sc->oom)
+					return -1;
+				if (sc->ng > ng)
+					sc->g[ng].unseen = unseen;
+			}
+			continue;
+		}
+		if (top + 2 > (int)(sizeof stack / sizeof *stack))
+			return -1;
+		stack[top++] = nd->a;
+		stack[top++] = id + 1;
+	}
+	return 0;
+}
+
+/* A node taken whole: what x' sees of its facets, as pair_lists() would
+ * say facet by facet (a solid's back is hidden unless x lies on the solid
+ * and the facet turns less than SMOOTH_COS from n; a facet of another
+ * body's back counts on its back): NODE_SEEN, NODE_UNSEEN, NODE_SPLIT
+ * where its box and cone cannot tell, NODE_FLIPPED where every facet
+ * counts on its back (the cube is then not one sheet). */
+enum { NODE_SEEN, NODE_UNSEEN, NODE_SPLIT, NODE_FLIPPED };
+
+static int
+node_sight(const pm_polyindex *pi, int id, const visit_ctx *q, pm_dvec3 n, pm_dvec3 xo, double eps,
+           const int *xobj, int nxobj)
+{
+	const pm_bvh_agg *A = &pi->agg[id];
+	int solid = pi->s->objs[A->obj].solid, ownall = nxobj == 4, ownnone = 1;
+	double b[6], cp, cm, m = 1e-10 * q->h;
+
+	node_rel(&pi->node[id], q->x, b);
+	cos_sum(pm_ddot(A->M, n), A->cmin, &cp, &cm);
+	for (int k = 0; k < nxobj && !ownall; k++)
+		if (xobj[k] == A->obj) {
+			ownall = cp >= SMOOTH_COS + 1e-12;
+			ownnone = cm < SMOOTH_COS - 1e-12;
+		}
+	if (!solid) {
+		if (node_front(b, A, xo, m))
+			return NODE_SEEN;
+		pm_bvh_agg back = *A;
+		back.M = pm_dscale(A->M, -1);
+		return node_front(b, &back, xo, m) ? NODE_FLIPPED : NODE_SPLIT;
+	}
+	if (ownall || node_front(b, A, xo, m - eps))
+		return NODE_SEEN;
+	/* Every facet behind x' by more than eps: N . (x' - v) <= M . (x' -
+	 * v) + |N - M| |x' - v| < -eps, i.e. -N in the flipped cone fronts
+	 * x' by more than eps. */
+	pm_bvh_agg back = *A;
+	back.M = pm_dscale(A->M, -1);
+	if (ownnone && node_front(b, &back, xo, eps + m))
+		return NODE_UNSEEN;
+	return NODE_SPLIT;
+}
+
+/* The weights where the cube is one sheet that x lies on, from index
+ * nodes where it can be shown (see above): 1 if done (w written, or left
+ * at 0 out of room); else the general path must run, 2 with sc->g
+ * holding the cube's polygons as pm_polyindex_cube() would have found
+ * them, 0 with a part of them. */
+static int
+sheet_nodes(pm_comp_scratch *sc, visit_ctx *q, const pm_vec3 *pos, pm_dvec3 n, pm_dvec3 xo, double eps,
+            double *w, pm_comp_stats *z)
+{
+	const pm_polyindex *pi = q->pi;
+	int agg[AGG_MAX], nagg, unseen[AGG_MAX], xobj[4], nxobj = 0, np = 0, r, simple = 1;
+	double h = q->h;
+
+	/* 2, no node whole: sc->g holds every polygon of the cube, in the
+	 * order pm_polyindex_cube() gives them (left before right, entries in
+	 * order), for the general path. */
+	if ((r = sheet_walk(sc, q, n, eps, agg, &nagg)) != 1)
+		return r < 0 ? 1 : r;
+	/* x lies on one of the polygons clipped one by one (nodes near x are
+	 * not taken whole). */
+	for (int a = 0; a < sc->ng; a++) {
+		cpoly *P = &sc->g[a];
+		sides(sc, P, xo, n, eps, 1);
+		if (P->xon && nxobj < 4)
+			xobj[nxobj++] = P->obj;
+	}
+	if (nxobj == 0)
+		return 0;
+	/* What x' sees of each node; a node that cannot tell gives way to its
+	 * children, or its facets one by one. */
+	for (int i = 0; i < nagg;) {
+		int id = agg[i], v = node_sight(pi, id, q, n, xo, eps, xobj, nxobj);
+		const pm_bvh_node *nd = &pi->node[id];
+		if (v == NODE_FLIPPED)
+			return 0;
+		if (v != NODE_SPLIT) {
+			unseen[i++] = v == NODE_UNSEEN;
+			continue;
+		}
+		agg[i] = agg[--nagg];
+		if (nd->n > 0) {
+			for (uint32_t e = nd->a; e < nd->a + nd->n; e++) {
+				int ng = sc->ng;
+				visit(q, pi->prim[e]);
+				if (sc->oom)
+					return 1;
+				if (sc->ng > ng)
+					sides(sc, &sc->g[ng], xo, n, eps, 1);
+			}
+			continue;
+		}
+		if (nagg + 2 > AGG_MAX)
+			return 0;
+		agg[nagg++] = (int)nd->a;
+		agg[nagg++] = id + 1;
+	}
+	/* The polygons one by one: on their fronts' side (a patch's facets
+	 * that count on their backs are another group), hidden as
+	 * pair_lists() says for one sheet. */
+	for (int a = 0; a < sc->ng; a++) {
+		cpoly *P = &sc->g[a];
+		int own = nxobj == 4;
+		if (pm_ddot(P->Ne, P->N) < 0)
+			return 0;
+		for (int b = 0; b < nxobj && !own; b++)
+			own = xobj[b] == P->obj && pm_ddot(P->N, n) >= SMOOTH_COS;
+		P->unseen = P->solid && !own && pm_ddot(P->N, xo) - P->d < -eps;
+		simple &= !P->unseen;
+	}
+	/* Sums over what x' sees (V, apar) and over all (M: groups() takes
+	 * the mean over every polygon). */
+	pm_dvec3 V = pm_dv3(0, 0, 0), M = pm_dv3(0, 0, 0);
+	double apar = 0, slo = INFINITY, shi = -INFINITY, cmin = 1, b[6];
+	for (int i = 0; i < nagg; i++) {
+		const pm_bvh_agg *A = &pi->agg[agg[i]];
+		if (!unseen[i])
+			V = pm_dadd(V, A->V);
+		M = pm_dadd(M, A->V);
+		simple &= !unseen[i];
+		np += (int)A->count;
+	}
+	for (int a = 0; a < sc->ng; a++) {
+		const cpoly *P = &sc->g[a];
+		pm_dvec3 s = pm_dscale(P->Ne, P->A);
+		M = pm_dadd(M, s);
+		if (P->unseen)
+			;
+		else if (P->xpar)
+			apar += pm_ddot(P->Ne, n) > 0 ? P->A : 0;
+		else
+			V = pm_dadd(V, s);
+	}
+	np += sc->ng;
+	double l = pm_dlen(M);
+	if (!(l > 0) || !isfinite(l) || np < 2)
+		return 0;
+	M = pm_dscale(M, 1 / l);
+	/* A cone around M that holds every facet, and the sheet's slab. */
+	for (int i = 0; i < nagg; i++) {
+		const pm_bvh_agg *A = &pi->agg[agg[i]];
+		double cp, cm, lo, hi;
+		cos_sum(pm_ddot(M, A->M), A->cmin, &cp, &cm);
+		cmin = dmin(cmin, cp - 1e-12);
+		node_rel(&pi->node[agg[i]], q->x, b);
+		box_dot(b, M, &lo, &hi);
+		slo = dmin(slo, lo);
+		shi = dmax(shi, hi);
+	}
+	for (int a = 0; a < sc->ng; a++) {
+		const cpoly *P = &sc->g[a];
+		cmin = dmin(cmin, pm_ddot(P->Ne, M) - 1e-12);
+		for (int v = 0; v < P->nv; v++) {
+			double m = pm_ddot(M, sc->cv[P->v0 + v]);
+			slo = dmin(slo, m);
+			shi = dmax(shi, m);
+		}
+	}
+	if (!(cmin >= SHEET_COS))
+		return 0;
+
+	/* Each photon as the general path takes it on one sheet: at once
+	 * where the sheet is simple and faces it whole, else on the facet
+	 * that holds it (none, or one x' does not see: not counted). */
+	double sina = sqrt(1 - cmin * cmin);
+	double thr = PM_COMP_SKIP_REL * 4 * h * h, fl = PM_COMP_FLOOR_REL * 4 * h * h;
+	int nind = sc->ng, ncv = sc->ncv;
+	z->polys = np;
+	z->groups = 1;
+	z->nodes = nagg;
+	for (int j = 0; j < z->front; j++) {
+		int i = sc->act[j], own = -1, nplane = 0, whole;
+		pm_dvec3 r = pm_dsub(pm_dfromf(pos[i]), q->x), psi = sc->psi[j];
+		double c = sc->c[j], A, m = pm_ddot(M, r);
+		if (m < slo - eps || m > shi + eps) {
+			z->hidden++;
+			continue;
+		}
+		whole = pm_ddot(psi, M) > sina + 1e-9;
+		if (simple && whole) {
+			w[i] = spread(c * apar + pm_ddot(psi, V), c, thr, fl, z);
+			continue;
+		}
+		/* The planes that hold it: of the polygons clipped, and of the
+		 * facets of the nodes whose boxes hold it, clipped for it. */
+		for (int k = 0; k < nagg; k++)
+			if (nodes_at(sc, q, agg[k], unseen[k], r, eps) < 0)
+				return 1;
+		if (!pm_grow((void **)&sc->held, &sc->heldcap, 0, sc->ng, sizeof *sc->held))
+			return 1;
+		for (int a = 0; a < sc->ng; a++) {
+			cpoly *P = &sc->g[a];
+			if (a >= nind)
+				sides(sc, P, xo, n, eps, 0);
+			if (fabs(pm_ddot(P->N, r) - P->d) <= eps)
+				sc->held[nplane++] = a;
+		}
+		if (nplane == 1)
+			own = pm_ddot(psi, sc->g[sc->held[0]].Ne) > 0 ? sc->held[0] : -1;
+		for (int t = 0; nplane > 1 && t < nplane; t++) {
+			const cpoly *P = &sc->g[sc->held[t]];
+			if (pm_ddot(psi, P->Ne) > 0 && (own < 0 || P->g < sc->g[own].g) && inside(sc, P, r, eps, 1))
+				own = sc->held[t];
+		}
+		if (own < 0 || sc->g[own].unseen) {
+			z->hidden++;
+			sc->ng = nind;
+			sc->ncv = ncv;
+			continue;
+		}
+		if (whole)
+			A = c * apar + pm_ddot(psi, V);
+		else {
+			A = 0;
+			for (int a = 0; a < nind; a++) {
+				double f = facing(&sc->g[a], psi, c, n);
+				A += f > 0 && !sc->g[a].unseen ? f * sc->g[a].A : 0;
+			}
+			for (int k = 0; k < nagg; k++)
+				A += unseen[k] ? 0 : facing_nodes(pi, agg[k], psi);
+		}
+		const cpoly *O = &sc->g[own];
+		A = dmax(A, facing(O, psi, c, n) * O->A / (GRID * GRID));
+		w[i] = spread(A, c, thr, fl, z);
+		sc->ng = nind;
+		sc->ncv = ncv;
+	}
+	return 1;
+}
+
 /* pm_comp_weights, or with hfix > 0 (pm_comp_weights_cube) the open cube
  * of that half-size. */
 static void
@@ -2595,7 +3179,13 @@ weights(const pm_polyindex *pi, pm_vec3 x, pm_vec3 n,
 	if (na == 0)
 		goto out;
 
-	/* The polygons in the cube. */
+	/* Beyond float rounding of the vertices, which grows with |x|. */
+	mx = dmax(fabs(xd.x), dmax(fabs(xd.y), fabs(xd.z)));
+	eps = 1e-4 * h + 8 * FLT_EPSILON * mx;
+	xo = pm_dscale(nd, dmax(XOFF_REL * h, 4 * eps));
+
+	/* The polygons in the cube: where they are one sheet, from the
+	 * index's nodes (sheet_nodes()), else one by one. */
 	sc->ng = sc->ncv = sc->nsp = sc->nbl = sc->nfl = 0;
 	sc->oom = 0;
 	q.sc = sc;
@@ -2604,33 +3194,24 @@ weights(const pm_polyindex *pi, pm_vec3 x, pm_vec3 n,
 	q.h = h;
 	q.tau = tau;
 	q.open = !z.closed;
-	pm_polyindex_cube(pi, xd, h, visit, &q);
+	int found = 0;
+	if (pm_comp_sheet_nodes && pi->agg) {
+		found = sheet_nodes(sc, &q, pos, nd, xo, eps, w, &z);
+		if (found == 1)
+			goto out;
+		if (found == 0)
+			sc->ng = sc->ncv = 0;
+	}
+	if (!found)
+		pm_polyindex_cube(pi, xd, h, visit, &q);
 	z.polys = sc->ng;
 	if (sc->oom)
 		goto out;
-	/* Beyond float rounding of the vertices, which grows with |x|. */
-	mx = dmax(fabs(xd.x), dmax(fabs(xd.y), fabs(xd.z)));
-	eps = 1e-4 * h + 8 * FLT_EPSILON * mx;
-	xo = pm_dscale(nd, dmax(XOFF_REL * h, 4 * eps));
 	if (!pm_grow((void **)&sc->sg, &sc->sgcap, 0, sc->ng, sizeof *sc->sg))
 		goto out;
 
-	for (int a = 0; a < sc->ng; a++) {
-		cpoly *P = &sc->g[a];
-		double sxo = pm_ddot(P->N, xo) - P->d;
-		P->Ne = P->solid || sxo >= 0 ? P->N : pm_dscale(P->N, -1);
-		P->de = pm_ddot(P->Ne, P->N) * P->d;
-		P->xpar = fabs(pm_ddot(P->N, nd)) >= 1 - PARALLEL_EPS && fabs(P->d) <= eps;
-		P->aopen = P->A;
-		if (sc->ng == 1)
-			break;
-		P->xon = fabs(P->d) <= eps && inside(sc, P, pm_dv3(0, 0, 0), eps, 1);
-		P->unseen = 0;
-		P->convex = 0;
-		P->nfc = P->ndyn = 0;
-		P->adyn = 0;
-		P->lit = 0;
-	}
+	for (int a = 0; a < sc->ng; a++)
+		sides(sc, &sc->g[a], xo, nd, eps, sc->ng > 1);
 	z.groups = sc->ng;
 	if (sc->ng == 1) {
 		one_polygon(sc, pos, xd, nd, h, eps, w, &z);

@@ -117,6 +117,8 @@ typedef struct pm_comp_stats {
 	                    sees of them is found through a tree (pm_comp_cast_at) */
 	int fcast;       /* of the sampled, whose fates were found by rays
 	                    (pm_comp_fate_cast_from) */
+	int nodes;       /* index nodes taken whole as parts of one sheet
+	                    (pm_comp_sheet_nodes); 0 where polygons were taken one by one */
 	int closed;      /* 1 if the cube was closed (see above) */
 	long shadowed;   /* sample points a photon's fate test passed over
 	                    (outside a polygon's shadow; pm_comp_shadow_from) */
@@ -192,6 +194,14 @@ extern int pm_comp_fronts_wait;
  * (compensate.c, hides_all()). 0 samples it and finds every cell hidden.
  * For tests and benchmarks, set before any estimate runs. */
 extern int pm_comp_hidden_whole;
+
+/* 1: a cube that holds one sheet which x lies on and x' sees whole takes
+ * the polygon index's nodes that lie wholly inside it as one piece each
+ * (their facets' sum of area times normal), clipping only the facets its
+ * faces cut and those near x; the same weights up to rounding
+ * (compensate.c, sheet_nodes()). 0 takes every polygon one by one. For
+ * tests and benchmarks, set before any estimate runs. */
+extern int pm_comp_sheet_nodes;
 
 /* The statistics of the last pm_estimate_compensated call with sc. */
 const pm_comp_stats *pm_comp_last(const pm_comp_scratch *sc);

@@ -159,6 +159,82 @@ convex_solid(const pm_scene *s, const pm_object *o, const pm_vec3 *verts)
 	return 1;
 }
 
+/* Entry i's unit normal and area, as the compensated estimate's clipping
+ * finds them for a polygon wholly inside its cube (clip.c: the cross
+ * products from the first vertex), here from the absolute vertices. */
+static void
+entry_shape(pm_polyindex *pi, uint32_t i)
+{
+	const pm_scene *s = pi->s;
+	uint32_t g = pi->prim[i], v0 = s->poly_start[g];
+	pm_dvec3 N = pm_dfromf(s->poly_normal[g]), o = pm_dfromf(pi->verts[s->poly_vert[v0]]);
+	pm_dvec3 sum = pm_dv3(0, 0, 0), prev = pm_dv3(0, 0, 0);
+	double len = pm_dlen(N);
+
+	N = len > 0 ? pm_dscale(N, 1 / len) : pm_dv3(0, 0, 0);
+	for (uint32_t v = v0 + 1; v < s->poly_start[g + 1]; v++) {
+		pm_dvec3 d = pm_dsub(pm_dfromf(pi->verts[s->poly_vert[v]]), o);
+		sum = pm_dadd(sum, pm_dcross(prev, d));
+		prev = d;
+	}
+	double a = 0.5 * fabs(pm_ddot(sum, N));
+	pi->pn[i] = N;
+	pi->pa[i] = isfinite(a) ? a : 0;
+}
+
+/* Patches of this many polygons or more are a dense mesh's. */
+#define DENSE_PATCH 64
+
+/* 1 if half the photon-surface polygons or more lie in patches of
+ * DENSE_PATCH polygons: only then do the nodes' aggregates pay for the
+ * walk that looks for nodes to take whole (compensate.c, sheet_walk();
+ * elsewhere it cost a cube of one polygon 1-2 %). 0 also out of room. */
+static int
+dense_patches(const pm_polyindex *pi)
+{
+	uint32_t *cnt = calloc((size_t)pi->s->npolys + 1, sizeof *cnt), dense = 0;
+
+	if (!cnt)
+		return 0;
+	for (uint32_t i = 0; i < pi->nprims; i++)
+		if (pi->patch[pi->prim[i]] < pi->s->npolys)
+			cnt[pi->patch[pi->prim[i]]]++;
+	for (uint32_t i = 0; i < pi->nprims; i++)
+		dense += pi->patch[pi->prim[i]] < pi->s->npolys && cnt[pi->patch[pi->prim[i]]] >= DENSE_PATCH;
+	free(cnt);
+	return dense >= pi->nprims - dense;
+}
+
+/* The aggregates of node id over entries [lo, hi); returns hi. */
+static uint32_t
+aggregate(pm_polyindex *pi, uint32_t id, uint32_t lo)
+{
+	const pm_bvh_node *nd = &pi->node[id];
+	pm_bvh_agg *A = &pi->agg[id];
+	uint32_t hi;
+
+	if (nd->n > 0)
+		hi = nd->a + nd->n;
+	else
+		hi = aggregate(pi, nd->a, aggregate(pi, id + 1, lo));
+	*A = (pm_bvh_agg){.patch = pi->patch[pi->prim[lo]], .obj = (int32_t)pi->s->poly_obj[pi->prim[lo]]};
+	for (uint32_t i = lo; i < hi; i++) {
+		uint32_t g = pi->prim[i];
+		A->V = pm_dadd(A->V, pm_dscale(pi->pn[i], pi->pa[i]));
+		if (pi->patch[g] != A->patch)
+			A->patch = PM_AGG_MIXED;
+		if ((int32_t)pi->s->poly_obj[g] != A->obj)
+			A->obj = -1;
+	}
+	double l = pm_dlen(A->V);
+	A->M = l > 0 && isfinite(l) ? pm_dscale(A->V, 1 / l) : pm_dv3(0, 0, 0);
+	A->cmin = l > 0 && isfinite(l) ? 1 : -2;
+	for (uint32_t i = lo; i < hi && A->cmin > -2; i++)
+		A->cmin = fmin(A->cmin, pm_ddot(pi->pn[i], A->M));
+	A->count = hi - lo;
+	return hi;
+}
+
 int
 pm_polyindex_build(pm_polyindex **out, const pm_scene *s, const pm_vec3 *verts,
                    pm_error *err)
@@ -246,6 +322,22 @@ pm_polyindex_build(pm_polyindex **out, const pm_scene *s, const pm_vec3 *verts,
 		pm_polyindex_free(pi);
 		return -1;
 	}
+	if (n > 0 && pi->patch && dense_patches(pi) &&
+	    !(pi->agg = malloc((size_t)pi->nnodes * sizeof *pi->agg))) {
+		pm_polyindex_free(pi);
+		return pm_seterr(err, "out of memory");
+	}
+	if (pi->agg) {
+		pi->pn = malloc((size_t)n * sizeof *pi->pn);
+		pi->pa = malloc((size_t)n * sizeof *pi->pa);
+		if (!pi->pn || !pi->pa) {
+			pm_polyindex_free(pi);
+			return pm_seterr(err, "out of memory");
+		}
+		for (uint32_t i = 0; i < n; i++)
+			entry_shape(pi, i);
+		aggregate(pi, 0, 0);
+	}
 	*out = pi;
 	return 0;
 }
@@ -260,15 +352,13 @@ pm_polyindex_free(pm_polyindex *pi)
 	free(pi->node);
 	free(pi->convex);
 	free(pi->patch);
+	free(pi->agg);
+	free(pi->pn);
+	free(pi->pa);
 	free(pi);
 }
 
-static int
-overlaps(const float *lo, const float *hi, const float q[6])
-{
-	return lo[0] <= q[3] && hi[0] >= q[0] && lo[1] <= q[4] && hi[1] >= q[1]
-	    && lo[2] <= q[5] && hi[2] >= q[2];
-}
+#define overlaps pm_polyindex_overlaps
 
 /* nextafterf(x, dir * INFINITY), dir = -1 or 1, inlined for finite x:
  * libm's is a call, made six times an estimate. */
@@ -288,22 +378,29 @@ step_float(float x, int dir)
 }
 
 void
-pm_polyindex_cube(const pm_polyindex *pi, pm_dvec3 c, double h,
-                  pm_polyindex_fn fn, void *ctx)
+pm_polyindex_query_box(pm_dvec3 c, double h, float q[6])
 {
-	uint32_t stack[STACK];
-	int top = 0;
-	float q[6];
 	double cc[3] = {c.x, c.y, c.z};
 
-	if (!pi || pi->nprims == 0 || !(h >= 0))
-		return;
 	/* Round the cube outward to float so that float boxes that touch the
 	 * exact cube always pass. */
 	for (int k = 0; k < 3; k++) {
 		q[k] = step_float((float)(cc[k] - h), -1);
 		q[3 + k] = step_float((float)(cc[k] + h), 1);
 	}
+}
+
+void
+pm_polyindex_cube(const pm_polyindex *pi, pm_dvec3 c, double h,
+                  pm_polyindex_fn fn, void *ctx)
+{
+	uint32_t stack[STACK];
+	int top = 0;
+	float q[6];
+
+	if (!pi || pi->nprims == 0 || !(h >= 0))
+		return;
+	pm_polyindex_query_box(c, h, q);
 	/* Children are tested before they are pushed, so a node on the stack
 	 * is known to meet the cube; the visiting order (left before right) is
 	 * the same as testing on popping, so callers see the same sequence. */

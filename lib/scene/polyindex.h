@@ -29,6 +29,20 @@ typedef struct pm_bvh_node {
 	uint32_t n;       /* leaf: entries (> 0); inner: 0 (left child is next) */
 } pm_bvh_node;
 
+/* What the polygons under one node share, for the compensated estimate,
+ * which takes a node that lies wholly inside its cube as one piece of a
+ * sheet rather than polygon by polygon. Areas are of the whole polygons,
+ * unit normals their poly_normal's, both in double. */
+#define PM_AGG_MIXED UINT32_MAX
+typedef struct pm_bvh_agg {
+	pm_dvec3 V;                /* sum of area times unit normal */
+	pm_dvec3 M;                /* V's direction (unit), 0 if V is 0 */
+	double cmin;               /* least N . M over the polygons: a cone */
+	uint32_t patch;            /* the smooth patch of them all, or PM_AGG_MIXED */
+	int32_t obj;               /* the object of them all, or -1 */
+	uint32_t count;            /* polygons */
+} pm_bvh_agg;
+
 struct pm_polyindex {
 	const pm_scene *s;
 	const pm_vec3 *verts;      /* the scene's vertices at the pass's time */
@@ -40,6 +54,9 @@ struct pm_polyindex {
 	double extent;             /* largest side of all their boxes together */
 	unsigned char *convex;     /* per object: a convex solid */
 	uint32_t *patch;           /* per polygon: its smooth patch (scene/patch.h) */
+	pm_bvh_agg *agg;           /* per node */
+	pm_dvec3 *pn;              /* per entry (prim order): unit normal, */
+	double *pa;                /* ... and area */
 };
 
 /* Calls fn(ctx, polygon) for every photon-surface polygon whose bounding box
@@ -47,5 +64,15 @@ struct pm_polyindex {
 typedef void (*pm_polyindex_fn)(void *ctx, uint32_t poly);
 void pm_polyindex_cube(const pm_polyindex *pi, pm_dvec3 c, double h,
                        pm_polyindex_fn fn, void *ctx);
+
+/* The query box of pm_polyindex_cube: the cube rounded outward to float
+ * (lo xyz, hi xyz), and the test it applies to a box. */
+void pm_polyindex_query_box(pm_dvec3 c, double h, float q[6]);
+static inline int
+pm_polyindex_overlaps(const float *lo, const float *hi, const float q[6])
+{
+	return lo[0] <= q[3] && hi[0] >= q[0] && lo[1] <= q[4] && hi[1] >= q[1]
+	    && lo[2] <= q[5] && hi[2] >= q[2];
+}
 
 #endif

@@ -1463,23 +1463,31 @@ cylinder(double u, double v)
 	return pm_v3((float)(CYL_R * sin(t)), (float)(2 * v - 1), (float)(CYL_R * (cos(t) - 1)));
 }
 
-/* The k photons of p nearest x (L-infinity), weighed at x (normal UP) in
- * two polygon indexes; returns how many. */
+/* The k photons of p nearest x (L-infinity), weighed at x (normal n) in
+ * the polygon index p1 with the switch *knob off (w1, st1), then in p2
+ * with it on (w2, st2); knob may be NULL. Returns how many photons. */
 static int
-weigh_twice(const tphotons *p, pm_vec3 x, int k, const pm_polyindex *p1, const pm_polyindex *p2,
-            pm_comp_scratch *sc, double *w1, double *w2, pm_comp_stats *st1, pm_comp_stats *st2)
+weigh_twice(const tphotons *p, pm_vec3 x, pm_vec3 n, int k, const pm_polyindex *p1,
+            const pm_polyindex *p2, int *knob, pm_comp_scratch *sc, double *w1, double *w2,
+            pm_comp_stats *st1, pm_comp_stats *st2)
 {
 	static int idx[4096];
 	static pm_vec3 pos[4096], dir[4096];
 	double dfar;
-	int n = knn(p, x, k, linf, idx, &dfar);
-	for (int a = 0; a < n; a++) {
+	int m = knn(p, x, k, linf, idx, &dfar), keep = knob ? *knob : 0;
+	for (int a = 0; a < m; a++) {
 		pos[a] = p->pos[idx[a]];
 		dir[a] = p->dir[idx[a]];
 	}
-	pm_comp_weights(p1, x, UP, pos, dir, n, 0, sc, w1, st1);
-	pm_comp_weights(p2, x, UP, pos, dir, n, 0, sc, w2, st2);
-	return n;
+	if (knob)
+		*knob = 0;
+	pm_comp_weights(p1, x, n, pos, dir, m, 0, sc, w1, st1);
+	if (knob)
+		*knob = 1;
+	pm_comp_weights(p2, x, n, pos, dir, m, 0, sc, w2, st2);
+	if (knob)
+		*knob = keep;
+	return m;
 }
 
 /* The same floor as one quad and as a smooth mesh of 32 x 32 quads (1024
@@ -1508,7 +1516,7 @@ TEST(tessellated_floor_is_one_quad)
 		int kk = q % 2 ? K : 400;
 		double s1 = 0, s2 = 0;
 		pm_comp_stats st1, st2;
-		int n = weigh_twice(&p, x, kk, p1, p2, sc, w1, w2, &st1, &st2);
+		int n = weigh_twice(&p, x, UP, kk, p1, p2, NULL, sc, w1, w2, &st1, &st2);
 		for (int a = 0; a < n; a++) {
 			s1 += w1[a];
 			s2 += w2[a];
@@ -1693,7 +1701,7 @@ TEST(floor_twice_under_many_groups)
 		pm_vec3 x = pm_v3((float)(0.04 * rnd(&r) - 0.02), (float)(0.04 * rnd(&r) - 0.02), 0);
 		double s1 = 0, s2 = 0;
 		pm_comp_stats st1, st2;
-		int n = weigh_twice(&p, x, K, p1, p2, sc, w1, w2, &st1, &st2), same = 1;
+		int n = weigh_twice(&p, x, UP, K, p1, p2, NULL, sc, w1, w2, &st1, &st2), same = 1;
 		for (int a = 0; a < n; a++) {
 			s1 += w1[a];
 			s2 += w2[a];
@@ -1750,7 +1758,7 @@ TEST(short_paths_match_the_general_one)
 			pm_vec3 x = pm_v3((float)(0.04 * rnd(&r) - 0.02), (float)(0.04 * rnd(&r) - 0.02), 0);
 			double s1 = 0;
 			pm_comp_stats st1, st2;
-			int n = weigh_twice(&p, x, K, p1, p2, sc, w1, w2, &st1, &st2), same = 1;
+			int n = weigh_twice(&p, x, UP, K, p1, p2, NULL, sc, w1, w2, &st1, &st2), same = 1;
 			for (int a = 0; a < n; a++) {
 				s1 += w1[a];
 				same &= fabs(w1[a] - w2[a]) <= 1e-12 * fabs(w1[a]);
@@ -1978,8 +1986,6 @@ TEST(hidden_whole_changes_nothing)
 {
 	static tscene t;
 	static double w1[K], w2[K];
-	static int idx[4096];
-	static pm_vec3 pos[4096], dir[4096];
 	long whole[2] = {0, 0};
 	int differ = 0, top[12];
 	for (int c = 0; c < 4; c++) {
@@ -1995,18 +2001,10 @@ TEST(hidden_whole_changes_nothing)
 		pm_comp_scratch *sc = pm_comp_scratch_new(K);
 		for (int q = 0; q < 40; q++) {
 			int b = top[(int)(rnd(&r) * nb) % nb];
-			double a = 0.05 + 0.9 * rnd(&r), e = 0.05 + 0.9 * rnd(&r), dfar, sum = 0;
+			double a = 0.05 + 0.9 * rnd(&r), e = 0.05 + 0.9 * rnd(&r), sum = 0;
 			pm_vec3 x = pm_add(t.ro[b], pm_add(pm_scale(t.ru[b], (float)a), pm_scale(t.rv[b], (float)e)));
 			pm_comp_stats st1, st2;
-			int n = knn(&p, x, K, linf, idx, &dfar), same = 1;
-			for (int i = 0; i < n; i++) {
-				pos[i] = p.pos[idx[i]];
-				dir[i] = p.dir[idx[i]];
-			}
-			pm_comp_hidden_whole = 0;
-			pm_comp_weights(pi, x, UP, pos, dir, n, 0, sc, w1, &st1);
-			pm_comp_hidden_whole = 1;
-			pm_comp_weights(pi, x, UP, pos, dir, n, 0, sc, w2, &st2);
+			int n = weigh_twice(&p, x, UP, K, pi, pi, &pm_comp_hidden_whole, sc, w1, w2, &st1, &st2), same = 1;
 			for (int i = 0; i < n; i++) {
 				sum += w1[i];
 				same &= w1[i] == w2[i];
@@ -2245,6 +2243,66 @@ TEST(tiny_tiles_one_cell_each)
 	tm_free(&m);
 }
 
+/* A cube of one curved sheet takes the polygon index's nodes that lie
+ * wholly inside it as one piece each (pm_comp_sheet_nodes): the weights
+ * must be those of the polygons one by one, up to rounding, on a trough
+ * z = c x^2 of 16 x 16 quads (one smooth patch, open or solid, photons
+ * sparse enough that cubes hold dozens of quads), and nodes must have been
+ * taken whole. */
+TEST(sheet_nodes_as_polygons_say)
+{
+	static tscene t;
+	static double w1[K], w2[K];
+	long nodes[2] = {0, 0};
+	int differ = 0, counted = 0, withnodes = 0;
+	for (int c = 0; c < 4; c++) {
+		pm_rng r = pm_rng_seed(57, (uint64_t)c);
+		tphotons p = {.flux = 1e-3};
+		double curve = c & 1 ? 0.6 : 0.25;
+		ts_init(&t);
+		int obj = ts_object(&t, c >= 2, 0);
+		for (int i = 0; i < 16; i++)
+			for (int j = 0; j < 16; j++) {
+				double x0 = -1 + i / 8.0, x1 = x0 + 1 / 8.0, y0 = -1 + j / 8.0;
+				pm_vec3 o = pm_v3((float)x0, (float)y0, (float)(curve * x0 * x0));
+				pm_vec3 u = pm_v3((float)(x1 - x0), 0, (float)(curve * (x1 * x1 - x0 * x0)));
+				ts_rect(&t, obj, o, u, pm_v3(0, 1 / 8.0f, 0));
+			}
+		for (int i = 0; i < t.nrect; i++) {
+			pm_vec3 N = pm_norm(pm_cross(t.ru[i], t.rv[i]));
+			for (int j = 0; j < 1; j++)
+				tp_rect(&p, &t, i, 1, pm_sample_cosine(N, pm_rng_f(&r), pm_rng_f(&r)), &r, 0);
+		}
+		pm_polyindex *pi = index_of(&t);
+		pm_comp_scratch *sc = pm_comp_scratch_new(K);
+		for (int q = 0; q < 40; q++) {
+			int b = (int)(rnd(&r) * t.nrect) % t.nrect;
+			double a = 0.05 + 0.9 * rnd(&r), e = 0.05 + 0.9 * rnd(&r), sum = 0, dmx = 0;
+			pm_vec3 x = pm_add(t.ro[b], pm_add(pm_scale(t.ru[b], (float)a), pm_scale(t.rv[b], (float)e)));
+			pm_vec3 nx = pm_norm(pm_cross(t.ru[b], t.rv[b]));
+			pm_comp_stats st1, st2;
+			int n = weigh_twice(&p, x, nx, K, pi, pi, &pm_comp_sheet_nodes, sc, w1, w2, &st1, &st2);
+			for (int i = 0; i < n; i++) {
+				sum += w1[i];
+				dmx = fmax(dmx, fabs(w1[i] - w2[i]));
+				counted += w1[i] > 0;
+			}
+			differ += !(sum > 0 && dmx <= 1e-9 * sum && st1.hidden == st2.hidden &&
+			            st1.skipped == st2.skipped && st1.polys == st2.polys);
+			withnodes += st2.nodes > 0;
+			nodes[0] += st1.nodes;
+			nodes[1] += st2.nodes;
+		}
+		pm_comp_scratch_free(sc);
+		pm_polyindex_free(pi);
+		tp_free(&p);
+	}
+	CHECKF(differ == 0, "weights differ in %d of 160 estimates", differ);
+	CHECKF(nodes[0] == 0 && nodes[1] > 0, "nodes taken whole: %ld off, %ld on", nodes[0], nodes[1]);
+	CHECKF(withnodes >= 20, "estimates with nodes taken whole: %d of 160", withnodes);
+	CHECKF(counted > 160 * 20, "photons counted: %d", counted);
+}
+
 int
 main(void)
 {
@@ -2280,8 +2338,10 @@ main(void)
 	RUN(shadow_box_drops_no_hit);
 	RUN(fronts_wait_change_nothing);
 	RUN(hidden_whole_changes_nothing);
+	RUN(sheet_nodes_as_polygons_say);
 	RUN(rays_find_the_fates_the_lists_find);
 	RUN(convex_sheets_need_no_fates);
 	RUN(tiny_tiles_one_cell_each);
 	return check_done();
 }
+
