@@ -2821,35 +2821,14 @@ facing_nodes(const pm_polyindex *pi, int id0, pm_dvec3 psi)
 static int
 nodes_at(pm_comp_scratch *sc, visit_ctx *q, int id0, int unseen, pm_dvec3 r, double tol)
 {
-	const pm_polyindex *pi = q->pi;
-	uint32_t stack[80];
-	int top = 0;
+	float box[6];
+	int ng = sc->ng;
 
-	stack[top++] = (uint32_t)id0;
-	while (top > 0) {
-		uint32_t id = stack[--top];
-		const pm_bvh_node *nd = &pi->node[id];
-		double b[6];
-		node_rel(nd, q->x, b);
-		if (r.x < b[0] - tol || r.y < b[1] - tol || r.z < b[2] - tol ||
-		    r.x > b[3] + tol || r.y > b[4] + tol || r.z > b[5] + tol)
-			continue;
-		if (nd->n > 0) {
-			for (uint32_t i = nd->a; i < nd->a + nd->n; i++) {
-				int ng = sc->ng;
-				visit(q, pi->prim[i]);
-				if (sc->oom)
-					return -1;
-				if (sc->ng > ng)
-					sc->g[ng].unseen = unseen;
-			}
-			continue;
-		}
-		if (top + 2 > (int)(sizeof stack / sizeof *stack))
-			return -1;
-		stack[top++] = nd->a;
-		stack[top++] = id + 1;
-	}
+	pm_polyindex_query_box(pm_dadd(q->x, r), tol, box);
+	if (clip_node(sc, q, id0, box) < 0)
+		return -1;
+	for (int a = ng; a < sc->ng; a++)
+		sc->g[a].unseen = unseen;
 	return 0;
 }
 
