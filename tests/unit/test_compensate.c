@@ -2243,22 +2243,89 @@ TEST(tiny_tiles_one_cell_each)
 	tm_free(&m);
 }
 
+/* The triangle a, b, c as a rectangle's corner and edges (ts_rect()'s
+ * ro, ru, rv; its points are those with both coordinates' sum <= 1). */
+static int
+ts_tri(tscene *t, int obj, pm_vec3 a, pm_vec3 b, pm_vec3 c)
+{
+	pm_vec3 q[3] = {a, b, c};
+	ts_poly(t, obj, 3, q);
+	t->ro[t->nrect] = a;
+	t->ru[t->nrect] = pm_sub(b, a);
+	t->rv[t->nrect] = pm_sub(c, a);
+	return t->nrect++;
+}
+
+/* A point of rectangle (or, with tri, triangle) i at coordinates drawn
+ * from r. */
+static pm_vec3
+on_piece(const tscene *t, int i, int tri, pm_rng *r)
+{
+	double a = 0.02 + 0.96 * rnd(r), e = 0.02 + 0.96 * rnd(r);
+	if (tri && a + e > 1) {
+		a = 1 - a;
+		e = 1 - e;
+	}
+	return pm_add(t->ro[i], pm_add(pm_scale(t->ru[i], (float)a), pm_scale(t->rv[i], (float)e)));
+}
+
+typedef struct sheet_tally {
+	int estimates, differ, counted, withnodes;
+	long nodes[2];
+} sheet_tally;
+
+/* One photon on each piece of t (cosine about its normal), then count
+ * estimates at points of random pieces, each weighed with
+ * pm_comp_sheet_nodes off and on: the weights must agree within 1e-9 of
+ * their sum, with the same hidden, skipped and polygon counts. */
+static void
+sheet_both_ways(const tscene *t, int tri, int count, pm_rng *r, sheet_tally *y)
+{
+	static double w1[K], w2[K];
+	tphotons p = {.flux = 1e-3};
+	for (int i = 0; i < t->nrect; i++) {
+		pm_vec3 N = pm_norm(pm_cross(t->ru[i], t->rv[i]));
+		tp_add(&p, on_piece(t, i, tri, r), pm_sample_cosine(N, pm_rng_f(r), pm_rng_f(r)), i);
+	}
+	pm_polyindex *pi = index_of(t);
+	pm_comp_scratch *sc = pm_comp_scratch_new(K);
+	for (int q = 0; q < count; q++) {
+		int b = (int)(rnd(r) * t->nrect) % t->nrect;
+		pm_vec3 x = on_piece(t, b, tri, r), nx = pm_norm(pm_cross(t->ru[b], t->rv[b]));
+		pm_comp_stats st1, st2;
+		double sum = 0, dmx = 0;
+		int n = weigh_twice(&p, x, nx, K, pi, pi, &pm_comp_sheet_nodes, sc, w1, w2, &st1, &st2);
+		for (int i = 0; i < n; i++) {
+			sum += w1[i];
+			dmx = fmax(dmx, fabs(w1[i] - w2[i]));
+			y->counted += w1[i] > 0;
+		}
+		y->differ += !(sum > 0 && dmx <= 1e-9 * sum && st1.hidden == st2.hidden &&
+		               st1.skipped == st2.skipped && st1.polys == st2.polys);
+		y->withnodes += st2.nodes > 0;
+		y->nodes[0] += st1.nodes;
+		y->nodes[1] += st2.nodes;
+		y->estimates++;
+	}
+	pm_comp_scratch_free(sc);
+	pm_polyindex_free(pi);
+	tp_free(&p);
+}
+
 /* A cube of one curved sheet takes the polygon index's nodes that lie
  * wholly inside it as one piece each (pm_comp_sheet_nodes): the weights
  * must be those of the polygons one by one, up to rounding, on a trough
  * z = c x^2 of 16 x 16 quads (one smooth patch, open or solid, photons
- * sparse enough that cubes hold dozens of quads), and nodes must have been
- * taken whole. */
+ * sparse enough that cubes hold dozens of quads), and on a solid ridge
+ * (c < 0: x' lies behind the planes of x's own nearly flat neighbours,
+ * which count all the same), and nodes must have been taken whole. */
 TEST(sheet_nodes_as_polygons_say)
 {
 	static tscene t;
-	static double w1[K], w2[K];
-	long nodes[2] = {0, 0};
-	int differ = 0, counted = 0, withnodes = 0;
-	for (int c = 0; c < 4; c++) {
+	sheet_tally y = {0};
+	for (int c = 0; c < 6; c++) {
 		pm_rng r = pm_rng_seed(57, (uint64_t)c);
-		tphotons p = {.flux = 1e-3};
-		double curve = c & 1 ? 0.6 : 0.25;
+		double curve = (c & 1 ? 0.6 : 0.25) * (c >= 4 ? -1 : 1);
 		ts_init(&t);
 		int obj = ts_object(&t, c >= 2, 0);
 		for (int i = 0; i < 16; i++)
@@ -2268,39 +2335,52 @@ TEST(sheet_nodes_as_polygons_say)
 				pm_vec3 u = pm_v3((float)(x1 - x0), 0, (float)(curve * (x1 * x1 - x0 * x0)));
 				ts_rect(&t, obj, o, u, pm_v3(0, 1 / 8.0f, 0));
 			}
-		for (int i = 0; i < t.nrect; i++) {
-			pm_vec3 N = pm_norm(pm_cross(t.ru[i], t.rv[i]));
-			for (int j = 0; j < 1; j++)
-				tp_rect(&p, &t, i, 1, pm_sample_cosine(N, pm_rng_f(&r), pm_rng_f(&r)), &r, 0);
-		}
-		pm_polyindex *pi = index_of(&t);
-		pm_comp_scratch *sc = pm_comp_scratch_new(K);
-		for (int q = 0; q < 40; q++) {
-			int b = (int)(rnd(&r) * t.nrect) % t.nrect;
-			double a = 0.05 + 0.9 * rnd(&r), e = 0.05 + 0.9 * rnd(&r), sum = 0, dmx = 0;
-			pm_vec3 x = pm_add(t.ro[b], pm_add(pm_scale(t.ru[b], (float)a), pm_scale(t.rv[b], (float)e)));
-			pm_vec3 nx = pm_norm(pm_cross(t.ru[b], t.rv[b]));
-			pm_comp_stats st1, st2;
-			int n = weigh_twice(&p, x, nx, K, pi, pi, &pm_comp_sheet_nodes, sc, w1, w2, &st1, &st2);
-			for (int i = 0; i < n; i++) {
-				sum += w1[i];
-				dmx = fmax(dmx, fabs(w1[i] - w2[i]));
-				counted += w1[i] > 0;
-			}
-			differ += !(sum > 0 && dmx <= 1e-9 * sum && st1.hidden == st2.hidden &&
-			            st1.skipped == st2.skipped && st1.polys == st2.polys);
-			withnodes += st2.nodes > 0;
-			nodes[0] += st1.nodes;
-			nodes[1] += st2.nodes;
-		}
-		pm_comp_scratch_free(sc);
-		pm_polyindex_free(pi);
-		tp_free(&p);
+		sheet_both_ways(&t, 0, 40, &r, &y);
 	}
-	CHECKF(differ == 0, "weights differ in %d of 160 estimates", differ);
-	CHECKF(nodes[0] == 0 && nodes[1] > 0, "nodes taken whole: %ld off, %ld on", nodes[0], nodes[1]);
-	CHECKF(withnodes >= 20, "estimates with nodes taken whole: %d of 160", withnodes);
-	CHECKF(counted > 160 * 20, "photons counted: %d", counted);
+	CHECKF(y.differ == 0, "weights differ in %d of %d estimates", y.differ, y.estimates);
+	CHECKF(y.nodes[0] == 0 && y.nodes[1] > 0, "nodes taken whole: %ld off, %ld on", y.nodes[0], y.nodes[1]);
+	CHECKF(y.withnodes >= 20, "estimates with nodes taken whole: %d of %d", y.withnodes, y.estimates);
+	CHECKF(y.counted > y.estimates * 20, "photons counted: %d", y.counted);
+}
+
+/* The same on generated bumps: z = a sin(f x + p) cos(g y + q) over
+ * [-1, 1]^2 in 11 x 11 cells of two triangles each, amplitude and
+ * frequencies drawn per scene (gentle swells to folds that bend past a
+ * sheet within a cube, saddles, ridges), open and solid, the diagonal
+ * either way. */
+TEST(sheet_nodes_on_random_bumps)
+{
+	static tscene t;
+	sheet_tally y = {0};
+	for (int c = 0; c < 16; c++) {
+		pm_rng r = pm_rng_seed(73, (uint64_t)c);
+		double amp = 0.03 + 0.8 * rnd(&r), f = 1 + 3 * rnd(&r), g = 1 + 3 * rnd(&r);
+		double ph = 6.3 * rnd(&r), qh = 6.3 * rnd(&r);
+		pm_vec3 v[12][12];
+		ts_init(&t);
+		int obj = ts_object(&t, c & 1, 0);
+		for (int i = 0; i <= 11; i++)
+			for (int j = 0; j <= 11; j++) {
+				double x = -1 + 2 * i / 11.0, yy = -1 + 2 * j / 11.0;
+				v[i][j] = pm_v3((float)x, (float)yy, (float)(amp * sin(f * x + ph) * cos(g * yy + qh)));
+			}
+		for (int i = 0; i < 11; i++)
+			for (int j = 0; j < 11; j++) {
+				pm_vec3 a = v[i][j], b = v[i + 1][j], d = v[i + 1][j + 1], e = v[i][j + 1];
+				if (c & 2) {
+					ts_tri(&t, obj, a, b, d);
+					ts_tri(&t, obj, a, d, e);
+				} else {
+					ts_tri(&t, obj, a, b, e);
+					ts_tri(&t, obj, b, d, e);
+				}
+			}
+		sheet_both_ways(&t, 1, 20, &r, &y);
+	}
+	CHECKF(y.differ == 0, "weights differ in %d of %d estimates", y.differ, y.estimates);
+	CHECKF(y.nodes[0] == 0 && y.nodes[1] > 0, "nodes taken whole: %ld off, %ld on", y.nodes[0], y.nodes[1]);
+	CHECKF(y.withnodes >= 20, "estimates with nodes taken whole: %d of %d", y.withnodes, y.estimates);
+	CHECKF(y.counted > y.estimates * 20, "photons counted: %d", y.counted);
 }
 
 int
@@ -2339,6 +2419,7 @@ main(void)
 	RUN(fronts_wait_change_nothing);
 	RUN(hidden_whole_changes_nothing);
 	RUN(sheet_nodes_as_polygons_say);
+	RUN(sheet_nodes_on_random_bumps);
 	RUN(rays_find_the_fates_the_lists_find);
 	RUN(convex_sheets_need_no_fates);
 	RUN(tiny_tiles_one_cell_each);
