@@ -2537,7 +2537,8 @@ sides(pm_comp_scratch *sc, cpoly *P, pm_dvec3 xo, pm_dvec3 n, double eps, int al
  * with margins past rounding; where one cannot be shown, or the cube is
  * not one sheet, the general path runs. The answers are the general
  * path's up to rounding (sums in another order, areas from the absolute
- * vertices): test_compensate, sheet_nodes_as_polygons_say. */
+ * vertices): test_compensate, sheet_nodes_as_polygons_say and
+ * sheet_nodes_on_random_bumps. */
 
 /* Nodes taken whole in one cube at most (a cube of a few thousand facets
  * takes tens). */
