@@ -13,6 +13,7 @@
 #include <string.h>
 
 #include "scene/patch.h"
+#include "scene/scene_poly.h"
 
 #define LEAF 4
 #define STACK 72     /* > depth of a median-split tree over 2^32 entries */
@@ -159,25 +160,19 @@ convex_solid(const pm_scene *s, const pm_object *o, const pm_vec3 *verts)
 	return 1;
 }
 
-/* Entry i's unit normal and area, as the compensated estimate's clipping
- * finds them for a polygon wholly inside its cube (clip.c: the cross
- * products from the first vertex), here from the absolute vertices. */
+/* Entry i's unit normal and area (Newell's sum along the normal, as the
+ * compensated estimate's clipping measures a polygon wholly inside its
+ * cube), from the absolute vertices. */
 static void
 entry_shape(pm_polyindex *pi, uint32_t i)
 {
 	const pm_scene *s = pi->s;
 	uint32_t g = pi->prim[i], v0 = s->poly_start[g];
-	pm_dvec3 N = pm_dfromf(s->poly_normal[g]), o = pm_dfromf(pi->verts[s->poly_vert[v0]]);
-	pm_dvec3 sum = pm_dv3(0, 0, 0), prev = pm_dv3(0, 0, 0);
+	pm_dvec3 N = pm_dfromf(s->poly_normal[g]);
 	double len = pm_dlen(N);
 
 	N = len > 0 ? pm_dscale(N, 1 / len) : pm_dv3(0, 0, 0);
-	for (uint32_t v = v0 + 1; v < s->poly_start[g + 1]; v++) {
-		pm_dvec3 d = pm_dsub(pm_dfromf(pi->verts[s->poly_vert[v]]), o);
-		sum = pm_dadd(sum, pm_dcross(prev, d));
-		prev = d;
-	}
-	double a = 0.5 * fabs(pm_ddot(sum, N));
+	double a = 0.5 * fabs(pm_ddot(pm_poly_newell(pi->verts, s->poly_vert + v0, s->poly_start[g + 1] - v0), N));
 	pi->pn[i] = N;
 	pi->pa[i] = isfinite(a) ? a : 0;
 }
