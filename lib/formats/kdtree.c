@@ -214,11 +214,23 @@ pm_kd_validate(const pm_photon *p, size_t n, pm_error *err)
 /* ---- k nearest ------------------------------------------------------- */
 
 /* The result heap orders neighbours by (distance, index), so that ties at
- * the k-th distance resolve the same way whatever the visiting order. */
+ * the k-th distance resolve the same way whatever the visiting order. A
+ * distance is never negative nor -0 (a sum of squares, or fabsf), and the
+ * bits of such floats order as the floats do, so (distance, index) is one
+ * 64-bit key: one compare where the pair's two were most of the heap's
+ * time. A NaN distance's key is above every number's, as "not less" was. */
+static inline uint64_t
+nn_key(float d, uint32_t idx)
+{
+	uint32_t b;
+	memcpy(&b, &d, sizeof b);
+	return (uint64_t)b << 32 | idx;
+}
+
 static inline int
 nn_less(float da, uint32_t ia, float db, uint32_t ib)
 {
-	return da < db || (da == db && ia < ib);
+	return nn_key(da, ia) < nn_key(db, ib);
 }
 
 static inline void
