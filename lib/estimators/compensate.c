@@ -3536,6 +3536,7 @@ pm_estimate_compensated_shrink(const pm_polyindex *pi, const pm_photons *map,
 		sc->dir[i] = pm_photon_dir(p);
 	}
 	complete = got < k || (uint64_t)got == map->h.count;
+	int shading = ns.x != n.x || ns.y != n.y || ns.z != n.z;
 	if (shrink > 0 && shrink < 1 && dfar > 0)
 		pm_comp_weights_cube(pi, x, n, sc->pos, sc->dir, got, shrink * dfar, sc, sc->w, &sc->last);
 	else
@@ -3545,7 +3546,7 @@ pm_estimate_compensated_shrink(const pm_polyindex *pi, const pm_photons *map,
 			continue;
 		pm_vec3 f = pm_bsdf_eval(m, ns, sc->dir[i], wo);
 		pm_vec3 P = pm_photon_power(&map->p[sc->nn[i].idx]);
-		if (ns.x != n.x || ns.y != n.y || ns.z != n.z)
+		if (shading)
 			f = pm_scale(f, pm_shading_photon_weight(n, ns, sc->dir[i]));
 		sum[0] += sc->w[i] * P.x * f.x;
 		sum[1] += sc->w[i] * P.y * f.y;

@@ -70,6 +70,7 @@ pm_estimate_classical_shrink(const pm_photons *map, pm_vec3 x, pm_vec3 n, pm_vec
 		if (!(r2 > 0))
 			return sum;
 	}
+	int shading = ns.x != n.x || ns.y != n.y || ns.z != n.z;
 	for (int i = 0; i < got; i++) {
 		const pm_photon *p = &map->p[nn[i].idx];
 		if (shrink > 0 && shrink < 1 && !(nn[i].d < r2))
@@ -79,7 +80,7 @@ pm_estimate_classical_shrink(const pm_photons *map, pm_vec3 x, pm_vec3 n, pm_vec
 		if (pm_dot(psi, n) <= 0)
 			continue;
 		pm_vec3 f = pm_bsdf_eval(m, ns, psi, wo);
-		if (ns.x != n.x || ns.y != n.y || ns.z != n.z)
+		if (shading)
 			f = pm_scale(f, pm_shading_photon_weight(n, ns, psi));
 		sum = pm_add(sum, pm_mul(f, pm_photon_power(p)));
 	}
