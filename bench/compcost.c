@@ -3,7 +3,7 @@
  * "no cliff"): estimates at the camera's first photon-surface hits (pixel
  * centres), one thread, each timed alone (thread CPU time).
  *
- *   compcost [-c CAST_AT] [-f POLYS] [-n PHOTONS] [-k K] [-r RUNS] [-o FILE] [-p LO,HI[,GROUPS]] SCENE
+ *   compcost [-c CAST_AT] [-f POLYS] [-n PHOTONS] [-k K] [-r RUNS] [-o FILE] [-p LO,HI[,GROUPS]] [-S] SCENE
  *   compcost -t SCENE      (prints the scene's triangles and stops)
  *
  * Prints "name<TAB>value" lines: the median over RUNS of the mean time per
@@ -21,7 +21,8 @@
  * (sheets and lone polygons) and the polygons whose fates went by rays
  * (pm_comp_stats), for plots and for comparing two builds estimate by
  * estimate. -c sets the compensated estimate's CAST_AT (pm_comp_cast_at,
- * compensate.h), which changes its time, not its answers. -p runs the
+ * compensate.h), which changes its time, not its answers. -S gives each
+ * facet its own sample point (pm_comp_share_cells 0). -p runs the
  * compensated estimates whose cubes hold LO to HI polygons (and, with
  * GROUPS, that many groups) five times more in profile_range(), for a
  * profiler to count those alone:
@@ -78,7 +79,7 @@ bin_of(int polys)
 static int
 usage(void)
 {
-	fprintf(stderr, "usage: compcost [-c CAST_AT] [-f POLYS] [-n PHOTONS] [-k K] [-r RUNS] [-o FILE] [-p LO,HI[,GROUPS]] SCENE\n");
+	fprintf(stderr, "usage: compcost [-c CAST_AT] [-f POLYS] [-n PHOTONS] [-k K] [-r RUNS] [-o FILE] [-p LO,HI[,GROUPS]] [-S] SCENE\n");
 	return 2;
 }
 
@@ -111,7 +112,7 @@ main(int argc, char **argv)
 	pm_camera cam;
 	pm_error err;
 
-	while ((c = getopt(argc, argv, "c:f:k:n:o:p:r:t")) != -1) {
+	while ((c = getopt(argc, argv, "c:f:k:n:o:p:r:St")) != -1) {
 		switch (c) {
 		case 'c': pm_comp_cast_at = atoi(optarg); break;
 		case 'f': pm_comp_fate_cast_from = atoi(optarg); break;
@@ -126,6 +127,7 @@ main(int argc, char **argv)
 			break;
 		case 'r': runs = atoi(optarg); break;
 		case 't': tris_only = 1; break;
+		case 'S': pm_comp_share_cells = 0; break;
 		default:
 			return usage();
 		}
@@ -180,7 +182,7 @@ main(int argc, char **argv)
 	int *ngrp = malloc((size_t)ne * sizeof *ngrp), *nfc = malloc((size_t)ne * sizeof *nfc);
 	pm_vec3 *L = malloc((size_t)ne * sizeof *L);
 	double tv[99], tw[99], sink = 0;
-	long nfl = 0, efl = 0, nwh = 0, nsm = 0, nsn = 0, esn = 0;
+	long nfl = 0, efl = 0, nwh = 0, nsm = 0, nsn = 0, esn = 0, nsh = 0;
 	if (!nn || !sc || !tcl || !tco || !polys || !nsam || !ngrp || !nfc || !L)
 		die(path, "out of memory");
 	for (long j = 0; j < ne; j++)
@@ -212,6 +214,7 @@ main(int argc, char **argv)
 				nsm += pm_comp_last(sc)->sampled;
 				nsn += pm_comp_last(sc)->nodes;
 				esn += pm_comp_last(sc)->nodes > 0;
+				nsh += pm_comp_last(sc)->shared;
 			}
 		}
 		tw[i] = cpu_now() - t0;
@@ -244,6 +247,7 @@ main(int argc, char **argv)
 	printf("floored\t%ld photons in %ld estimates\n", nfl, efl);
 	printf("sampled\t%ld polygons; %ld more hidden whole, unsampled\n", nsm, nwh);
 	printf("sheet_nodes\t%ld estimates of one sheet from %ld index nodes\n", esn, nsn);
+	printf("shared\t%ld facets took their cell's point\n", nsh);
 	/* Per bin also the classical estimates' mean at the same points, and
 	 * the bin's share of what the compensated ones cost over them: where
 	 * the price comes from, which the means alone hide (many cheap

@@ -126,6 +126,7 @@ int pm_comp_shadow_from = 6;
 int pm_comp_fronts_wait = 1;
 int pm_comp_hidden_whole = 1;
 int pm_comp_sheet_nodes = 1;
+int pm_comp_share_cells = 1;
 #define IDX(e) ((e) & (FRONT - 1))
 
 typedef struct cpoly {
@@ -162,6 +163,9 @@ typedef struct cpoly {
 	int fcast;             /* fates by rays (cast_fates()): no F list, every
 	                          point it shows x' is dynamic */
 	int gpos;              /* its place in sc->gp (list order, cast_fates()) */
+	int share;             /* 1 + the facet whose point's backward rays
+	                          stand for those of its cell's (share_cells()),
+	                          itself included; 0: its own */
 	int fl0, nfl;          /* fates by rays: what its list would hold that
 	                          a ray from it may meet, sc->fl[fl0 ..], in
 	                          list order, or nfl -1: too many, each ray
@@ -214,6 +218,10 @@ typedef struct sgrid {
 
 struct pm_comp_scratch {
 	int k;
+	int *cellt, celltcap;  /* share_cells()'s table: cell key, facet */
+	int *rayat, *rayhit;   /* a shared ray's answer (1: x's fate) along
+	                          photon rayat - 1's direction */
+	int rayatcap, rayhitcap;
 	pm_nn *nn;
 	pm_vec3 *pos, *dir;    /* photons found */
 	double *w;             /* their weights */
@@ -363,6 +371,9 @@ pm_comp_scratch_free(pm_comp_scratch *sc)
 	free(sc->psi);
 	free(sc->c);
 	free(sc->own);
+	free(sc->cellt);
+	free(sc->rayat);
+	free(sc->rayhit);
 	free(sc->fx);
 	free(sc->g);
 	free(sc->cv);
@@ -2447,6 +2458,70 @@ sample(pm_comp_scratch *sc, cpoly *P, pm_dvec3 xo, double h, double eps)
 	return 1;
 }
 
+/* Where fates go by rays, a sheet of facets smaller than a sample cell
+ * gets a point a facet (sample()), and each point a backward ray for
+ * every photon: thousands in a cube of a dense mesh, where one polygon as
+ * large as the sheet would get GRID^2 at most. Each facet keeps its own
+ * point for what x' sees of it and for a fate that is the same for every
+ * direction; those whose fate depends on the direction, of one sheet and
+ * with their boxes' centres in one of the cube's GRID^3 cells, take the
+ * ray of the first of them. 0 if out of room. */
+static int
+share_cells(pm_comp_scratch *sc, double h, pm_comp_stats *z)
+{
+	double cell = 4 * h * h / (GRID * GRID);
+	int cap = 16;
+
+	if (sc->ngr >= INT_MAX / (GRID * GRID * GRID))
+		return 1;       /* a key a cell would not fit: each its own */
+	while (cap < 2 * sc->ng)
+		cap <<= 1;
+	if (!pm_grow((void **)&sc->cellt, &sc->celltcap, 0, 2 * cap, sizeof *sc->cellt))
+		return 0;
+	for (int i = 0; i < cap; i++)
+		sc->cellt[2 * i] = -1;
+	for (int a = 0; a < sc->ng; a++) {
+		cpoly *P = &sc->g[a];
+		if (!P->fcast || P->unseen || P->ndyn != 1 || P->ncell != 1 || !sc->gr[P->grp].sheet ||
+		    !(P->A < cell))
+			continue;
+		int key = P->grp;
+		for (int k = 0; k < 3; k++) {
+			int c = (int)floor((comp(P->c, k) + h) * (GRID / (2 * h)));
+			key = key * GRID + (c < 0 ? 0 : c >= GRID ? GRID - 1 : c);
+		}
+		unsigned i = (unsigned)key * 2654435761u & (unsigned)(cap - 1);
+		while (sc->cellt[2 * i] >= 0 && sc->cellt[2 * i] != key)
+			i = (i + 1) & (unsigned)(cap - 1);
+		if (sc->cellt[2 * i] < 0) {
+			sc->cellt[2 * i] = key;
+			sc->cellt[2 * i + 1] = a;
+			continue;
+		}
+		int r = sc->cellt[2 * i + 1];
+		sc->g[r].share = 1 + r;
+		P->share = 1 + r;
+		z->shared++;
+	}
+	return 1;
+}
+
+/* The area of P (fates by rays) that x' sees and whose backward rays
+ * along psi meet what x's does (fate fx): its open area where x's ray is
+ * open, and its points of fate fx, a cell each. -1 if out of room. */
+static double
+cast_area(pm_comp_scratch *sc, const cpoly *P, pm_dvec3 psi, double h, double eps, int fx)
+{
+	/* The points' rays over P's front list, or through the tree in
+	 * beams; the covered points' fates were found once (sample()). */
+	int hit = P->nfl >= 0 ? front_hits(sc, P, psi, eps, fx) : cast_hits(sc, P, psi, h, eps, fx);
+	if (sc->oom)
+		return -1;
+	for (int t = P->s0 + P->ndyn; t < P->s0 + P->ns; t++)
+		hit += sc->sf[t] == fx;
+	return (fx < 0 ? P->aopen : 0) + (hit > 0 ? hit * (P->A / P->ncell) : 0);
+}
+
 /* Psi . Ne for P, with Psi . n in its place on x's plane so that the cosine
  * cancels exactly against (Psi . n) in eq. 2. */
 static inline __attribute__((always_inline)) double
@@ -3221,14 +3296,24 @@ weights(const pm_polyindex *pi, pm_vec3 x, pm_vec3 n,
 			if (sc->g[a].unseen)
 				sc->g[a].aopen = 0;
 			else if (sc->g[a].nr > 0 || sc->g[a].nf > 0 || sc->g[a].fcast) {
-				if (!sample(sc, &sc->g[a], xo, h, eps) ||
-				    (sc->g[a].fcast && !front_list(sc, &sc->g[a], eps)))
+				if (!sample(sc, &sc->g[a], xo, h, eps))
 					goto out;
 				z.sampled++;
 				z.cells += sc->g[a].ncell;
 				z.cast += sc->g[a].cast;
 				z.fcast += sc->g[a].fcast;
 			}
+		if (sc->fcast && pm_comp_share_cells && !share_cells(sc, h, &z))
+			goto out;
+		/* A front list serves rays from P's points whose fate depends on
+		 * the direction: none without such points, or where they take
+		 * another facet's rays. */
+		for (int a = 0; a < sc->ng; a++) {
+			cpoly *P = &sc->g[a];
+			if (P->fcast && !P->unseen && P->ndyn > 0 && (P->share == 0 || P->share - 1 == a) &&
+			    !front_list(sc, P, eps))
+				goto out;
+		}
 	}
 	if (!pm_grow((void **)&sc->gq, &sc->gqcap, 0, sc->ng, sizeof *sc->gq) ||
 	    !pm_grow((void **)&sc->gapat, &sc->gapatcap, 0, sc->nbl, sizeof *sc->gapat) ||
@@ -3336,6 +3421,13 @@ weights(const pm_polyindex *pi, pm_vec3 x, pm_vec3 n,
 		sc->own[j] = own;
 	}
 
+	if (z.shared > 0) {
+		if (!pm_grow((void **)&sc->rayat, &sc->rayatcap, 0, sc->ng, sizeof *sc->rayat) ||
+		    !pm_grow((void **)&sc->rayhit, &sc->rayhitcap, 0, sc->ng, sizeof *sc->rayhit))
+			goto out;
+		for (int a = 0; a < sc->ng; a++)
+			sc->rayat[a] = 0;
+	}
 	/* Eq. 4 over what counts, eq. 2 and 3: Phi_p / A_p (Psi_p . N). */
 	double thr = PM_COMP_SKIP_REL * 4 * h * h, fl = PM_COMP_FLOOR_REL * 4 * h * h;
 	int *cand = sc->bl + sc->nbl, *dcand = cand + sc->ng + 1, wait = pm_comp_fronts_wait;
@@ -3378,20 +3470,33 @@ weights(const pm_polyindex *pi, pm_vec3 x, pm_vec3 n,
 				double f = facing(P, psi, c, nd), s = 0;
 				if (!(f > 0) || P->unseen)
 					continue;
+				if (P->share) {
+					/* Its one point's fate along psi (share_cells()): its
+					 * cell's first facet's ray, cast once a photon. */
+					int r = P->share - 1;
+					if (!(pm_ddot(psi, sc->g[r].Ne) > 0) || gl[gi] == own) {
+						/* Its cell's first facet turned from psi, or the
+						 * photon's own facet: its own ray. */
+						int hit = cast_hits(sc, P, psi, h, eps, sc->fx[j]);
+						if (sc->oom)
+							goto out;
+						A += f * hit * P->A;
+						continue;
+					}
+					if (sc->rayat[r] != j + 1) {
+						const cpoly *R = &sc->g[r];
+						sc->rayhit[r] = R->nfl >= 0 ? front_hits(sc, R, psi, eps, sc->fx[j])
+						                            : cast_hits(sc, R, psi, h, eps, sc->fx[j]);
+						if (sc->oom)
+							goto out;
+						sc->rayat[r] = j + 1;
+					}
+					A += f * sc->rayhit[r] * P->A;
+					continue;
+				}
 				if (P->fcast) {
-					/* The points' rays over P's front list, or through
-					 * the tree in beams; the covered points' fates were
-					 * found once (sample()). */
-					int hit = 0;
-					if (P->nfl >= 0)
-						hit = front_hits(sc, P, psi, eps, sc->fx[j]);
-					else
-						hit = cast_hits(sc, P, psi, h, eps, sc->fx[j]);
-					if (sc->oom)
+					if ((s = cast_area(sc, P, psi, h, eps, sc->fx[j])) < 0)
 						goto out;
-					for (int t = P->s0 + P->ndyn; t < P->s0 + P->ns; t++)
-						hit += sc->sf[t] == sc->fx[j];
-					s = (sc->fx[j] < 0 ? P->aopen : 0) + (hit > 0 ? hit * (P->A / P->ncell) : 0);
 					A += f * s;
 					continue;
 				}

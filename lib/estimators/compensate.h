@@ -117,6 +117,9 @@ typedef struct pm_comp_stats {
 	                    sees of them is found through a tree (pm_comp_cast_at) */
 	int fcast;       /* of the sampled, whose fates were found by rays
 	                    (pm_comp_fate_cast_from) */
+	int shared;      /* of the polygons, small facets of a sheet whose fates
+	                    went by rays and that took another facet's rays
+	                    (pm_comp_share_cells) */
 	int nodes;       /* index nodes taken whole as parts of one sheet
 	                    (pm_comp_sheet_nodes); 0 where polygons were taken one by one */
 	int closed;      /* 1 if the cube was closed (see above) */
@@ -202,6 +205,16 @@ extern int pm_comp_hidden_whole;
  * (compensate.c, sheet_nodes()). 0 takes every polygon one by one. For
  * tests and benchmarks, set before any estimate runs. */
 extern int pm_comp_sheet_nodes;
+
+/* 1: where fates go by rays, the facets of a sheet smaller than a sample
+ * cell (one point each) whose fate depends on the direction take, by the
+ * cube's cells (GRID^3 of them), the backward rays of the first such
+ * facet in their cell; each keeps its own point for what x' sees of it,
+ * and its own area and facing (compensate.c, share_cells()). The rays
+ * then follow the cube's resolution, not the mesh's; the weights change
+ * by that. 0 casts each facet's own. For tests and benchmarks, set before
+ * any estimate runs. */
+extern int pm_comp_share_cells;
 
 /* The statistics of the last pm_estimate_compensated call with sc. */
 const pm_comp_stats *pm_comp_last(const pm_comp_scratch *sc);
