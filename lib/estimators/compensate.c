@@ -2464,8 +2464,16 @@ sample(pm_comp_scratch *sc, cpoly *P, pm_dvec3 xo, double h, double eps)
  * large as the sheet would get GRID^2 at most. Each facet keeps its own
  * point for what x' sees of it and for a fate that is the same for every
  * direction; those whose fate depends on the direction, of one sheet and
- * with their boxes' centres in one of the cube's GRID^3 cells, take the
- * ray of the first of them. 0 if out of room. */
+ * with their boxes' centres in one of the cube's GRID^3 cells and facing
+ * within SHARE_COS of the first of them, take its ray. 0 if out of room. */
+/* The cosine within which a facet's normal must lie of its cell's first
+ * facet's to take its ray (10 degrees). Where the sheet bends inside a
+ * cell (a bump's flank beside its top) the facets' fates part: there the
+ * generated bumps test found its largest differences (127 % in one
+ * estimate); with this rule 40 %, the mean 2.9 -> 2.1 %, while dense
+ * keeps 99.8 % of its shared facets and meshroom 92 %. */
+#define SHARE_COS 0.985
+
 static int
 share_cells(pm_comp_scratch *sc, double h, pm_comp_stats *z)
 {
@@ -2499,6 +2507,8 @@ share_cells(pm_comp_scratch *sc, double h, pm_comp_stats *z)
 			continue;
 		}
 		int r = sc->cellt[2 * i + 1];
+		if (pm_ddot(sc->g[r].N, P->N) < SHARE_COS)
+			continue;
 		sc->g[r].share = 1 + r;
 		P->share = 1 + r;
 		z->shared++;
