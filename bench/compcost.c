@@ -21,8 +21,8 @@
  * (sheets and lone polygons) and the polygons whose fates went by rays
  * (pm_comp_stats), for plots and for comparing two builds estimate by
  * estimate. -c sets the compensated estimate's CAST_AT (pm_comp_cast_at,
- * compensate.h), which changes its time, not its answers. -S gives each
- * facet its own sample point (pm_comp_share_cells 0). -p runs the
+ * compensate.h), which changes its time, not its answers. -S has each
+ * facet cast its own rays (pm_comp_share_cells 0). -p runs the
  * compensated estimates whose cubes hold LO to HI polygons (and, with
  * GROUPS, that many groups) five times more in profile_range(), for a
  * profiler to count those alone:
@@ -247,7 +247,7 @@ main(int argc, char **argv)
 	printf("floored\t%ld photons in %ld estimates\n", nfl, efl);
 	printf("sampled\t%ld polygons; %ld more hidden whole, unsampled\n", nsm, nwh);
 	printf("sheet_nodes\t%ld estimates of one sheet from %ld index nodes\n", esn, nsn);
-	printf("shared\t%ld facets took their cell's point\n", nsh);
+	printf("shared\t%ld facets took their cell's rays\n", nsh);
 	/* Per bin also the classical estimates' mean at the same points, and
 	 * the bin's share of what the compensated ones cost over them: where
 	 * the price comes from, which the means alone hide (many cheap
