@@ -2458,14 +2458,6 @@ sample(pm_comp_scratch *sc, cpoly *P, pm_dvec3 xo, double h, double eps)
 	return 1;
 }
 
-/* Where fates go by rays, a sheet of facets smaller than a sample cell
- * gets a point a facet (sample()), and each point a backward ray for
- * every photon: thousands in a cube of a dense mesh, where one polygon as
- * large as the sheet would get GRID^2 at most. Each facet keeps its own
- * point for what x' sees of it and for a fate that is the same for every
- * direction; those whose fate depends on the direction, of one sheet and
- * with their boxes' centres in one of the cube's GRID^3 cells and facing
- * within SHARE_COS of the first of them, take its ray. 0 if out of room. */
 /* The cosine within which a facet's normal must lie of its cell's first
  * facet's to take its ray (10 degrees). Where the sheet bends inside a
  * cell (a bump's flank beside its top) the facets' fates part: there the
@@ -2474,6 +2466,14 @@ sample(pm_comp_scratch *sc, cpoly *P, pm_dvec3 xo, double h, double eps)
  * keeps 99.8 % of its shared facets and meshroom 92 %. */
 #define SHARE_COS 0.985
 
+/* Where fates go by rays, a sheet of facets smaller than a sample cell
+ * gets a point a facet (sample()), and each point a backward ray for
+ * every photon: thousands in a cube of a dense mesh, where one polygon as
+ * large as the sheet would get GRID^2 at most. Each facet keeps its own
+ * point for what x' sees of it and for a fate that is the same for every
+ * direction; those whose fate depends on the direction, of one sheet and
+ * with their boxes' centres in one of the cube's GRID^3 cells and facing
+ * within SHARE_COS of the first of them, take its ray. 0 if out of room. */
 static int
 share_cells(pm_comp_scratch *sc, double h, pm_comp_stats *z)
 {
@@ -2516,15 +2516,22 @@ share_cells(pm_comp_scratch *sc, double h, pm_comp_stats *z)
 	return 1;
 }
 
+/* How many of P's dynamic points (fates by rays) have fate fx along psi:
+ * their rays over P's front list, or through the tree in beams. */
+static inline int
+ray_hits(pm_comp_scratch *sc, const cpoly *P, pm_dvec3 psi, double h, double eps, int fx)
+{
+	return P->nfl >= 0 ? front_hits(sc, P, psi, eps, fx) : cast_hits(sc, P, psi, h, eps, fx);
+}
+
 /* The area of P (fates by rays) that x' sees and whose backward rays
  * along psi meet what x's does (fate fx): its open area where x's ray is
  * open, and its points of fate fx, a cell each. -1 if out of room. */
 static double
 cast_area(pm_comp_scratch *sc, const cpoly *P, pm_dvec3 psi, double h, double eps, int fx)
 {
-	/* The points' rays over P's front list, or through the tree in
-	 * beams; the covered points' fates were found once (sample()). */
-	int hit = P->nfl >= 0 ? front_hits(sc, P, psi, eps, fx) : cast_hits(sc, P, psi, h, eps, fx);
+	/* The covered points' fates were found once (sample()). */
+	int hit = ray_hits(sc, P, psi, h, eps, fx);
 	if (sc->oom)
 		return -1;
 	for (int t = P->s0 + P->ndyn; t < P->s0 + P->ns; t++)
@@ -3486,7 +3493,8 @@ weights(const pm_polyindex *pi, pm_vec3 x, pm_vec3 n,
 					int r = P->share - 1;
 					if (!(pm_ddot(psi, sc->g[r].Ne) > 0) || gl[gi] == own) {
 						/* Its cell's first facet turned from psi, or the
-						 * photon's own facet: its own ray. */
+						 * photon's own facet: its own ray, through the
+						 * tree (a member builds no front list). */
 						int hit = cast_hits(sc, P, psi, h, eps, sc->fx[j]);
 						if (sc->oom)
 							goto out;
@@ -3494,9 +3502,7 @@ weights(const pm_polyindex *pi, pm_vec3 x, pm_vec3 n,
 						continue;
 					}
 					if (sc->rayat[r] != j + 1) {
-						const cpoly *R = &sc->g[r];
-						sc->rayhit[r] = R->nfl >= 0 ? front_hits(sc, R, psi, eps, sc->fx[j])
-						                            : cast_hits(sc, R, psi, h, eps, sc->fx[j]);
+						sc->rayhit[r] = ray_hits(sc, &sc->g[r], psi, h, eps, sc->fx[j]);
 						if (sc->oom)
 							goto out;
 						sc->rayat[r] = j + 1;
