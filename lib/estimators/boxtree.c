@@ -77,15 +77,21 @@ build(pm_boxtree *t, const double (*lo)[3], const double (*hi)[3], double grow, 
 		nd->tag = -1;
 		return;
 	}
+	/* One pass for the three axes: each item's index read once. */
+	const double *c0 = cen, *c1 = cen + (size_t)n, *c2 = cen + 2 * (size_t)n;
 	for (int k = 0; k < 3; k++) {
-		const double *ck = cen + (size_t)k * n;
 		clo[k] = INFINITY;
 		chi[k] = -INFINITY;
-		for (int i = first; i < first + count; i++) {
-			double c = ck[t->item[i]];
-			clo[k] = c < clo[k] ? c : clo[k];
-			chi[k] = c > chi[k] ? c : chi[k];
-		}
+	}
+	for (int i = first; i < first + count; i++) {
+		int b = t->item[i];
+		double x = c0[b], y = c1[b], z = c2[b];
+		clo[0] = x < clo[0] ? x : clo[0];
+		chi[0] = x > chi[0] ? x : chi[0];
+		clo[1] = y < clo[1] ? y : clo[1];
+		chi[1] = y > chi[1] ? y : chi[1];
+		clo[2] = z < clo[2] ? z : clo[2];
+		chi[2] = z > chi[2] ? z : chi[2];
 	}
 	int ax = chi[0] - clo[0] >= chi[1] - clo[1] && chi[0] - clo[0] >= chi[2] - clo[2] ? 0
 	         : chi[1] - clo[1] >= chi[2] - clo[2] ? 1 : 2;
