@@ -3208,8 +3208,8 @@ sheet_nodes(pm_comp_scratch *sc, visit_ctx *q, const pm_vec3 *pos, pm_dvec3 n, p
 
 /* Past this many polygons the photons' loop finds a photon's polygons
  * among those of its cell of a PGRID^3 grid over the cube, not among all
- * the planes of its groups (each photon tested every one: a fifth of the
- * loop's time on meshroom's head). */
+ * the planes of its groups (each photon testing every one cost meshroom
+ * 1.3 % more instructions, grid built included). */
 #define PGRID_FROM 48
 #define PGRID 8
 
