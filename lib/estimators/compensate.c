@@ -275,7 +275,7 @@ struct pm_comp_scratch {
 	int htcap;
 	int *gm;               /* groups that may hold one photon */
 	int gmcap;
-	int *held;             /* ... polygons whose planes hold it */
+	int *held;             /* ... polygons whose planes and boxes hold it */
 	int heldcap;
 	int *pgc;              /* where many polygons: each cell's first in pgl
 	                          (poly_grid()), PGRID^3 + 1 of them */
@@ -3157,8 +3157,9 @@ sheet_nodes(pm_comp_scratch *sc, visit_ctx *q, const pm_vec3 *pos, pm_dvec3 n, p
 			w[i] = spread(c * apar + pm_ddot(psi, V), c, thr, fl, z);
 			continue;
 		}
-		/* The planes that hold it: of the polygons clipped, and of the
-		 * facets of the nodes whose boxes hold it, clipped for it. */
+		/* The planes and boxes that hold it: of the polygons clipped,
+		 * and of the facets of the nodes whose boxes hold it, clipped
+		 * for it. */
 		float box[6];
 		pm_polyindex_query_box(pm_dadd(q->x, r), eps, box); /* once: it costs a hundred instructions */
 		for (int k = 0; k < nagg; k++)
@@ -3212,6 +3213,7 @@ sheet_nodes(pm_comp_scratch *sc, visit_ctx *q, const pm_vec3 *pos, pm_dvec3 n, p
  * 1.3 % more instructions, grid built included). */
 #define PGRID_FROM 48
 #define PGRID 8
+#define PGRID_PER 16
 
 /* A coordinate's cell: monotone in v, so a box's cells hold the cells of
  * every point in it. */
@@ -3223,14 +3225,16 @@ pgrid_cell(double v, double h)
 }
 
 /* sc->pgc and sc->pgl: the polygons by cell, each box grown by eps (the
- * tolerance of in_box()). 0 out of room. */
+ * tolerance of in_box()). 1 if built; 0 where the polygons are so large
+ * that the lists would pass PGRID_PER entries a polygon (the loop then
+ * tests every plane); -1 out of room. */
 static int
 poly_grid(pm_comp_scratch *sc, double h, double eps)
 {
 	int lo[3], hi[3], n = 0, *c;
 
 	if (!pm_grow((void **)&sc->pgc, &sc->pgccap, 0, PGRID * PGRID * PGRID + 1, sizeof *sc->pgc))
-		return 0;
+		return -1;
 	c = sc->pgc;
 	for (int i = 0; i <= PGRID * PGRID * PGRID; i++)
 		c[i] = 0;
@@ -3255,8 +3259,10 @@ poly_grid(pm_comp_scratch *sc, double h, double eps)
 			for (int i = 0; i < PGRID * PGRID * PGRID; i++)
 				c[i + 1] += c[i];
 			n = c[PGRID * PGRID * PGRID];
-			if (!pm_grow((void **)&sc->pgl, &sc->pglcap, 0, n, sizeof *sc->pgl))
+			if (n > PGRID_PER * sc->ng)
 				return 0;
+			if (!pm_grow((void **)&sc->pgl, &sc->pglcap, 0, n, sizeof *sc->pgl))
+				return -1;
 		}
 	}
 	/* The fill moved each cell's start to the next one's: back by one. */
@@ -3474,9 +3480,11 @@ weights(const pm_polyindex *pi, pm_vec3 x, pm_vec3 n,
 	/* Which photons count: each lies on a polygon of the cube, on the side
 	 * that faces its light and x', where x' sees it, and its backward ray
 	 * meets what x's does. */
-	int pgrid = sc->ng >= PGRID_FROM;
+	int pgrid = sc->ng >= PGRID_FROM ? poly_grid(sc, h, eps) : 0;
+	if (pgrid < 0)
+		goto out;
 	if (pgrid) {
-		if (!poly_grid(sc, h, eps) || !pm_grow((void **)&sc->gmark, &sc->gmarkcap, 0, sc->ngr, 1))
+		if (!pm_grow((void **)&sc->gmark, &sc->gmarkcap, 0, sc->ngr, 1))
 			goto out;
 		for (int G = 0; G < sc->ngr; G++)
 			sc->gmark[G] = 0;
