@@ -128,6 +128,7 @@ int pm_comp_fronts_wait = 1;
 int pm_comp_hidden_whole = 1;
 int pm_comp_sheet_nodes = 1;
 int pm_comp_share_cells = 1;
+int pm_comp_photon_grid = 1;
 #define IDX(e) ((e) & (FRONT - 1))
 
 typedef struct cpoly {
@@ -3480,7 +3481,7 @@ weights(const pm_polyindex *pi, pm_vec3 x, pm_vec3 n,
 	/* Which photons count: each lies on a polygon of the cube, on the side
 	 * that faces its light and x', where x' sees it, and its backward ray
 	 * meets what x's does. */
-	int pgrid = sc->ng >= PGRID_FROM ? poly_grid(sc, h, eps) : 0;
+	int pgrid = pm_comp_photon_grid && sc->ng >= PGRID_FROM ? poly_grid(sc, h, eps) : 0;
 	if (pgrid < 0)
 		goto out;
 	if (pgrid) {

@@ -216,6 +216,13 @@ extern int pm_comp_sheet_nodes;
  * any estimate runs. */
 extern int pm_comp_share_cells;
 
+/* 1: in a cube of many polygons, a photon's polygon is looked for among
+ * those whose boxes meet its cell of a grid over the cube; the same
+ * weights (compensate.c, poly_grid()). 0 tests every plane of the groups
+ * that may hold it. For tests and benchmarks, set before any estimate
+ * runs. */
+extern int pm_comp_photon_grid;
+
 /* The statistics of the last pm_estimate_compensated call with sc. */
 const pm_comp_stats *pm_comp_last(const pm_comp_scratch *sc);
 

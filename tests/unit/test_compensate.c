@@ -2455,6 +2455,51 @@ TEST(shared_points_on_random_bumps)
 	CHECKF(dmax <= 0.6, "largest |difference| %.4f", dmax);
 }
 
+/* A photon's polygon found among its cell's of a grid over the cube
+ * (pm_comp_photon_grid) must be the one every plane of its groups gives:
+ * the very same weights, on generated bumps of 242 triangles, folded
+ * (sheets peeled) and gentle under a ceiling (two groups), photons on
+ * about one facet in two, estimates on the bumps; and cubes past the
+ * grid's 48 polygons must have been most of them. */
+TEST(photon_grid_changes_nothing)
+{
+	static tscene t;
+	static double w1[K], w2[K];
+	int estimates = 0, differ = 0, many = 0;
+	for (int c = 0; c < 8; c++) {
+		pm_rng r = pm_rng_seed(83, (uint64_t)c);
+		ts_init(&t);
+		ts_bumps(&t, ts_object(&t, c & 1, 0), c & 2 ? 0.8 : 0.25, c & 4, &r);
+		int nb = t.nrect;
+		if (!(c & 2))
+			ts_rect(&t, ts_object(&t, 0, 0), pm_v3(-1, -1, 0.45f), pm_v3(0, 2, 0), pm_v3(2, 0, 0));
+		tphotons p = {.flux = 1e-3};
+		for (int i = 0; i < nb; i++)
+			if (rnd(&r) < 0.5) {
+				pm_vec3 N = pm_norm(pm_cross(t.ru[i], t.rv[i]));
+				tp_add(&p, on_piece(&t, i, 1, &r), pm_sample_cosine(N, pm_rng_f(&r), pm_rng_f(&r)), i);
+			}
+		pm_polyindex *pi = index_of(&t);
+		pm_comp_scratch *sc = pm_comp_scratch_new(K);
+		for (int q = 0; q < 20; q++) {
+			int b = (int)(rnd(&r) * nb) % nb;
+			pm_vec3 x = on_piece(&t, b, 1, &r), nx = pm_norm(pm_cross(t.ru[b], t.rv[b]));
+			pm_comp_stats st1, st2;
+			int n = weigh_twice(&p, x, nx, K, pi, pi, &pm_comp_photon_grid, sc, w1, w2, &st1, &st2), same = 1;
+			for (int i = 0; i < n; i++)
+				same &= w1[i] == w2[i];
+			differ += !(same && st1.hidden == st2.hidden && st1.polys == st2.polys);
+			many += st1.polys >= 48 && st1.groups > 1;
+			estimates++;
+		}
+		pm_comp_scratch_free(sc);
+		pm_polyindex_free(pi);
+		tp_free(&p);
+	}
+	CHECKF(differ == 0, "weights differ in %d of %d estimates", differ, estimates);
+	CHECKF(many >= estimates / 2, "cubes of 48 polygons or more in two groups or more: %d of %d", many, estimates);
+}
+
 int
 main(void)
 {
@@ -2493,6 +2538,7 @@ main(void)
 	RUN(sheet_nodes_as_polygons_say);
 	RUN(sheet_nodes_on_random_bumps);
 	RUN(shared_points_on_random_bumps);
+	RUN(photon_grid_changes_nothing);
 	RUN(rays_find_the_fates_the_lists_find);
 	RUN(convex_sheets_need_no_fates);
 	RUN(tiny_tiles_one_cell_each);
