@@ -2391,6 +2391,29 @@ TEST(sheet_nodes_on_random_bumps)
 	CHECKF(y.counted > y.estimates * 20, "photons counted: %d", y.counted);
 }
 
+/* One photon on about one of the first nb pieces of t in two, its
+ * direction cosine-distributed about the piece's normal. */
+static void
+photons_on_half(const tscene *t, int nb, pm_rng *r, tphotons *p)
+{
+	for (int i = 0; i < nb; i++)
+		if (rnd(r) < 0.5) {
+			pm_vec3 N = pm_norm(pm_cross(t->ru[i], t->rv[i]));
+			tp_add(p, on_piece(t, i, 1, r), pm_sample_cosine(N, pm_rng_f(r), pm_rng_f(r)), i);
+		}
+}
+
+/* A point on one of the first nb pieces of t, drawn at random, and that
+ * piece's normal. */
+static pm_vec3
+on_some(const tscene *t, int nb, pm_rng *r, pm_vec3 *n)
+{
+	int b = (int)(rnd(r) * nb) % nb;
+	pm_vec3 x = on_piece(t, b, 1, r);
+	*n = pm_norm(pm_cross(t->ru[b], t->rv[b]));
+	return x;
+}
+
 /* Where fates go by rays, small facets of a sheet take the backward rays
  * of their cell's first facet (pm_comp_share_cells). Generated bumps of
  * 242 triangles under a ceiling (two groups), photons on about one facet
@@ -2415,16 +2438,11 @@ TEST(shared_points_on_random_bumps)
 		int nb = t.nrect;
 		ts_rect(&t, ts_object(&t, 0, 0), pm_v3(-1, -1, 0.45f), pm_v3(0, 2, 0), pm_v3(2, 0, 0));
 		tphotons p = {.flux = 1e-3};
-		for (int i = 0; i < nb; i++)
-			if (rnd(&r) < 0.5) {
-				pm_vec3 N = pm_norm(pm_cross(t.ru[i], t.rv[i]));
-				tp_add(&p, on_piece(&t, i, 1, &r), pm_sample_cosine(N, pm_rng_f(&r), pm_rng_f(&r)), i);
-			}
+		photons_on_half(&t, nb, &r, &p);
 		pm_polyindex *pi = index_of(&t);
 		pm_comp_scratch *sc = pm_comp_scratch_new(K);
 		for (int q = 0; q < 20; q++) {
-			int b = (int)(rnd(&r) * nb) % nb;
-			pm_vec3 x = on_piece(&t, b, 1, &r), nx = pm_norm(pm_cross(t.ru[b], t.rv[b]));
+			pm_vec3 nx, x = on_some(&t, nb, &r, &nx);
 			pm_comp_stats st1, st2;
 			double s1 = 0, s2 = 0;
 			int n = weigh_twice(&p, x, nx, K, pi, pi, &pm_comp_share_cells, sc, w1, w2, &st1, &st2);
@@ -2474,16 +2492,11 @@ TEST(photon_grid_changes_nothing)
 		if (!(c & 2))
 			ts_rect(&t, ts_object(&t, 0, 0), pm_v3(-1, -1, 0.45f), pm_v3(0, 2, 0), pm_v3(2, 0, 0));
 		tphotons p = {.flux = 1e-3};
-		for (int i = 0; i < nb; i++)
-			if (rnd(&r) < 0.5) {
-				pm_vec3 N = pm_norm(pm_cross(t.ru[i], t.rv[i]));
-				tp_add(&p, on_piece(&t, i, 1, &r), pm_sample_cosine(N, pm_rng_f(&r), pm_rng_f(&r)), i);
-			}
+		photons_on_half(&t, nb, &r, &p);
 		pm_polyindex *pi = index_of(&t);
 		pm_comp_scratch *sc = pm_comp_scratch_new(K);
 		for (int q = 0; q < 20; q++) {
-			int b = (int)(rnd(&r) * nb) % nb;
-			pm_vec3 x = on_piece(&t, b, 1, &r), nx = pm_norm(pm_cross(t.ru[b], t.rv[b]));
+			pm_vec3 nx, x = on_some(&t, nb, &r, &nx);
 			pm_comp_stats st1, st2;
 			int n = weigh_twice(&p, x, nx, K, pi, pi, &pm_comp_photon_grid, sc, w1, w2, &st1, &st2), same = 1;
 			for (int i = 0; i < n; i++)
