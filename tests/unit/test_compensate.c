@@ -2391,16 +2391,25 @@ TEST(sheet_nodes_on_random_bumps)
 	CHECKF(y.counted > y.estimates * 20, "photons counted: %d", y.counted);
 }
 
-/* One photon on about one of the first nb pieces of t in two, its
- * direction cosine-distributed about the piece's normal. */
-static void
-photons_on_half(const tscene *t, int nb, pm_rng *r, tphotons *p)
+/* t: generated bumps (ts_bumps(), of a solid or not, amplitude up to
+ * 0.03 + amax, diagonal diag) and, with ceiling, a ceiling over them at
+ * z = 0.45; into p, one photon on about one bump triangle in two, its
+ * direction cosine-distributed about the triangle's normal. Returns the
+ * bump triangles (pieces 0 to that less one). */
+static int
+bumps_lit(tscene *t, pm_rng *r, int solid, double amax, int diag, int ceiling, tphotons *p)
 {
+	ts_init(t);
+	ts_bumps(t, ts_object(t, solid, 0), amax, diag, r);
+	int nb = t->nrect;
+	if (ceiling)
+		ts_rect(t, ts_object(t, 0, 0), pm_v3(-1, -1, 0.45f), pm_v3(0, 2, 0), pm_v3(2, 0, 0));
 	for (int i = 0; i < nb; i++)
 		if (rnd(r) < 0.5) {
 			pm_vec3 N = pm_norm(pm_cross(t->ru[i], t->rv[i]));
 			tp_add(p, on_piece(t, i, 1, r), pm_sample_cosine(N, pm_rng_f(r), pm_rng_f(r)), i);
 		}
+	return nb;
 }
 
 /* A point on one of the first nb pieces of t, drawn at random, and that
@@ -2433,12 +2442,8 @@ TEST(shared_points_on_random_bumps)
 	int estimates = 0, engaged = 0, leaked = 0, close = 0;
 	for (int c = 0; c < 16; c++) {
 		pm_rng r = pm_rng_seed(79, (uint64_t)c);
-		ts_init(&t);
-		ts_bumps(&t, ts_object(&t, 0, 0), 0.25, 0, &r);
-		int nb = t.nrect;
-		ts_rect(&t, ts_object(&t, 0, 0), pm_v3(-1, -1, 0.45f), pm_v3(0, 2, 0), pm_v3(2, 0, 0));
 		tphotons p = {.flux = 1e-3};
-		photons_on_half(&t, nb, &r, &p);
+		int nb = bumps_lit(&t, &r, 0, 0.25, 0, 1, &p);
 		pm_polyindex *pi = index_of(&t);
 		pm_comp_scratch *sc = pm_comp_scratch_new(K);
 		for (int q = 0; q < 20; q++) {
@@ -2486,13 +2491,8 @@ TEST(photon_grid_changes_nothing)
 	int estimates = 0, differ = 0, many = 0;
 	for (int c = 0; c < 8; c++) {
 		pm_rng r = pm_rng_seed(83, (uint64_t)c);
-		ts_init(&t);
-		ts_bumps(&t, ts_object(&t, c & 1, 0), c & 2 ? 0.8 : 0.25, c & 4, &r);
-		int nb = t.nrect;
-		if (!(c & 2))
-			ts_rect(&t, ts_object(&t, 0, 0), pm_v3(-1, -1, 0.45f), pm_v3(0, 2, 0), pm_v3(2, 0, 0));
 		tphotons p = {.flux = 1e-3};
-		photons_on_half(&t, nb, &r, &p);
+		int nb = bumps_lit(&t, &r, c & 1, c & 2 ? 0.8 : 0.25, c & 4, !(c & 2), &p);
 		pm_polyindex *pi = index_of(&t);
 		pm_comp_scratch *sc = pm_comp_scratch_new(K);
 		for (int q = 0; q < 20; q++) {
