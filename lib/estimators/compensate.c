@@ -279,7 +279,7 @@ struct pm_comp_scratch {
 	int *held;             /* ... polygons whose planes and boxes hold it */
 	int heldcap;
 	int *pgc;              /* where many polygons: each cell's first in pgl
-	                          (poly_grid()), PGRID^3 + 1 of them */
+	                          (poly_grid()), GRID^3 + 1 of them */
 	int pgccap;
 	int *pgl;              /* the polygons whose boxes meet each cell */
 	int pglcap;
@@ -311,7 +311,7 @@ struct pm_comp_scratch {
 	int btagcap;
 	int tree_built;        /* ... made once an estimate, when first asked */
 	int fcast;             /* fates by rays in this cube (FATE_CAST_POLYS) */
-	uint64_t *okey;        /* object and polygon (or object's rank), while runs are made */
+	uint64_t *okey;        /* object and polygon, while runs are made */
 	int okeycap;
 	int *oby;              /* the polygons by object, and where each */
 	int *orun0;            /* object's run starts (nrun + 1 entries) */
@@ -1711,32 +1711,30 @@ cmp_u64(const void *a, const void *b)
 	return (x > y) - (x < y);
 }
 
+/* The objects a cube's polygons are counted into place by, past which
+ * cast_prepare() sorts them. */
+#define OBJS_FEW 16
+
 /* In a cube whose fates go by rays: the cube's polygons by object (runs
  * in sc->oby, each polygon's run in orun), for cast_closed(), and each
  * polygon's place in sc->gp. 0 if there is no room. */
-#define OBJS_FEW 16
-
 static int
 cast_prepare(pm_comp_scratch *sc)
 {
 	int ng = sc->ng;
 
-	if (!pm_grow((void **)&sc->okey, &sc->okeycap, 0, ng, sizeof *sc->okey) ||
-	    !pm_grow((void **)&sc->oby, &sc->obycap, 0, ng, sizeof *sc->oby) ||
+	if (!pm_grow((void **)&sc->oby, &sc->obycap, 0, ng, sizeof *sc->oby) ||
 	    !pm_grow((void **)&sc->orun0, &sc->orun0cap, 0, ng + 1, sizeof *sc->orun0) ||
 	    !pm_grow((void **)&sc->onrm, &sc->onrmcap, 0, ng, sizeof *sc->onrm))
 		return 0;
-	/* A cube holds polygons of few objects: counted into place by object
-	 * (the order a sort of the keys gives), a sort only past OBJS_FEW. */
+	/* A cube holds polygons of few objects (objs, ascending): counted
+	 * into place by object, in polygon order within one, the order a
+	 * sort of (object, polygon) gives, and for less than a sort. */
 	uint32_t objs[OBJS_FEW];
 	int cnt[OBJS_FEW + 1] = {0}, no = 0;
-	for (int i = 0; i < ng; i++) {
+	for (int i = 0; i < ng && no <= OBJS_FEW; i++) {
 		uint32_t o = (uint32_t)sc->g[i].obj;
 		int s = 0;
-		sc->g[sc->gp[i]].gpos = i;
-		sc->okey[i] = (uint64_t)o << 32 | (uint32_t)i;
-		if (no > OBJS_FEW)
-			continue;
 		while (s < no && objs[s] < o)
 			s++;
 		if (s < no && objs[s] == o)
@@ -1747,23 +1745,30 @@ cast_prepare(pm_comp_scratch *sc)
 		}
 		no++;
 	}
+	for (int i = 0; i < ng; i++)
+		sc->g[sc->gp[i]].gpos = i;
 	if (no > OBJS_FEW) {
+		if (!pm_grow((void **)&sc->okey, &sc->okeycap, 0, ng, sizeof *sc->okey))
+			return 0;
+		for (int i = 0; i < ng; i++)
+			sc->okey[i] = (uint64_t)(uint32_t)sc->g[i].obj << 32 | (uint32_t)i;
 		qsort(sc->okey, (size_t)ng, sizeof *sc->okey, cmp_u64);
 		for (int i = 0; i < ng; i++)
 			sc->oby[i] = (int)(uint32_t)sc->okey[i];
-	} else {
-		for (int i = 0; i < ng; i++) {
-			int s = 0;
-			while (objs[s] != (uint32_t)(sc->okey[i] >> 32))
-				s++;
-			sc->okey[i] = (uint32_t)s;
-			cnt[s + 1]++;
+	} else
+		for (int pass = 0; pass < 2; pass++) {
+			for (int i = 0; i < ng; i++) {
+				int s = 0;
+				while (objs[s] != (uint32_t)sc->g[i].obj)
+					s++;
+				if (pass == 0)
+					cnt[s + 1]++;
+				else
+					sc->oby[cnt[s]++] = i;
+			}
+			for (int s = 0; s < no && pass == 0; s++)
+				cnt[s + 1] += cnt[s];
 		}
-		for (int s = 0; s < no; s++)
-			cnt[s + 1] += cnt[s];
-		for (int i = 0; i < ng; i++)
-			sc->oby[cnt[sc->okey[i]]++] = i;
-	}
 	sc->nrun = 0;
 	for (int i = 0; i < ng; i++) {
 		int b = sc->oby[i];
@@ -2504,6 +2509,16 @@ sample(pm_comp_scratch *sc, cpoly *P, pm_dvec3 xo, double h, double eps)
 	return 1;
 }
 
+/* Which of the cube's GRID cells along an axis holds coordinate v (from
+ * x, the cube's half-size h), those outside the cube in the nearest: monotone
+ * in v, so a box's cells hold the cells of every point in it. */
+static inline int
+cube_cell(double v, double h)
+{
+	double t = (v + h) * (GRID / (2 * h));
+	return !(t >= 1) ? 0 : t >= GRID - 1 ? GRID - 1 : (int)t;
+}
+
 /* The cosine within which a facet's normal must lie of its cell's first
  * facet's to take its ray (10 degrees). Where the sheet bends inside a
  * cell (a bump's flank beside its top) the facets' fates part: there the
@@ -2540,10 +2555,8 @@ share_cells(pm_comp_scratch *sc, double h, pm_comp_stats *z)
 		    !(P->A < cell))
 			continue;
 		int key = P->grp;
-		for (int k = 0; k < 3; k++) {
-			int c = (int)floor((comp(P->c, k) + h) * (GRID / (2 * h)));
-			key = key * GRID + (c < 0 ? 0 : c >= GRID ? GRID - 1 : c);
-		}
+		for (int k = 0; k < 3; k++)
+			key = key * GRID + cube_cell(comp(P->c, k), h);
 		unsigned i = (unsigned)key * 2654435761u & (unsigned)(cap - 1);
 		while (sc->cellt[2 * i] >= 0 && sc->cellt[2 * i] != key)
 			i = (i + 1) & (unsigned)(cap - 1);
@@ -2786,7 +2799,8 @@ clip_node(pm_comp_scratch *sc, visit_ctx *q, int id0, const float box[6])
 	uint32_t stack[80];
 	int top = 0;
 
-	stack[top++] = (uint32_t)id0;
+	if (pm_polyindex_overlaps(pi->node[id0].lo, pi->node[id0].hi, box))
+		stack[top++] = (uint32_t)id0;
 	while (top > 0) {
 		const pm_bvh_node *nd = &pi->node[stack[--top]];
 		if (nd->n > 0) {
@@ -2962,11 +2976,8 @@ facing_nodes(const pm_polyindex *pi, int id0, pm_dvec3 psi)
 static int
 nodes_at(pm_comp_scratch *sc, visit_ctx *q, int id0, int unseen, const float box[6])
 {
-	const pm_bvh_node *nd = &q->pi->node[id0];
 	int ng = sc->ng;
 
-	if (!pm_polyindex_overlaps(nd->lo, nd->hi, box))
-		return 0;
 	if (clip_node(sc, q, id0, box) < 0)
 		return -1;
 	for (int a = ng; a < sc->ng; a++)
@@ -3209,21 +3220,11 @@ sheet_nodes(pm_comp_scratch *sc, visit_ctx *q, const pm_vec3 *pos, pm_dvec3 n, p
 }
 
 /* Past this many polygons the photons' loop finds a photon's polygons
- * among those of its cell of a PGRID^3 grid over the cube, not among all
+ * among those of its cell of the cube's GRID^3 cells (cube_cell()), not among all
  * the planes of its groups (each photon testing every one cost meshroom
  * 1.3 % more instructions, grid built included). */
 #define PGRID_FROM 48
-#define PGRID 8
 #define PGRID_PER 16
-
-/* A coordinate's cell: monotone in v, so a box's cells hold the cells of
- * every point in it. */
-static inline int
-pgrid_cell(double v, double h)
-{
-	double t = (v + h) * (PGRID / (2 * h));
-	return !(t >= 1) ? 0 : t >= PGRID - 1 ? PGRID - 1 : (int)t;
-}
 
 /* sc->pgc and sc->pgl: the polygons by cell, each box grown by eps (the
  * tolerance of in_box()). 1 if built; 0 where the polygons are so large
@@ -3234,22 +3235,22 @@ poly_grid(pm_comp_scratch *sc, double h, double eps)
 {
 	int lo[3], hi[3], n = 0, *c;
 
-	if (!pm_grow((void **)&sc->pgc, &sc->pgccap, 0, PGRID * PGRID * PGRID + 1, sizeof *sc->pgc))
+	if (!pm_grow((void **)&sc->pgc, &sc->pgccap, 0, GRID * GRID * GRID + 1, sizeof *sc->pgc))
 		return -1;
 	c = sc->pgc;
-	for (int i = 0; i <= PGRID * PGRID * PGRID; i++)
+	for (int i = 0; i <= GRID * GRID * GRID; i++)
 		c[i] = 0;
 	for (int pass = 0; pass < 2; pass++) {
 		for (int a = 0; a < sc->ng; a++) {
 			const cpoly *P = &sc->g[a];
 			for (int k = 0; k < 3; k++) {
-				lo[k] = pgrid_cell(P->lo[k] - eps, h);
-				hi[k] = pgrid_cell(P->hi[k] + eps, h);
+				lo[k] = cube_cell(P->lo[k] - eps, h);
+				hi[k] = cube_cell(P->hi[k] + eps, h);
 			}
 			for (int i = lo[0]; i <= hi[0]; i++)
 				for (int j = lo[1]; j <= hi[1]; j++)
 					for (int k = lo[2]; k <= hi[2]; k++) {
-						int cell = (i * PGRID + j) * PGRID + k;
+						int cell = (i * GRID + j) * GRID + k;
 						if (pass == 0)
 							c[cell + 1]++;
 						else
@@ -3257,9 +3258,9 @@ poly_grid(pm_comp_scratch *sc, double h, double eps)
 					}
 		}
 		if (pass == 0) {
-			for (int i = 0; i < PGRID * PGRID * PGRID; i++)
+			for (int i = 0; i < GRID * GRID * GRID; i++)
 				c[i + 1] += c[i];
-			n = c[PGRID * PGRID * PGRID];
+			n = c[GRID * GRID * GRID];
 			if (n > PGRID_PER * sc->ng)
 				return 0;
 			if (!pm_grow((void **)&sc->pgl, &sc->pglcap, 0, n, sizeof *sc->pgl))
@@ -3267,7 +3268,7 @@ poly_grid(pm_comp_scratch *sc, double h, double eps)
 		}
 	}
 	/* The fill moved each cell's start to the next one's: back by one. */
-	for (int i = PGRID * PGRID * PGRID; i > 0; i--)
+	for (int i = GRID * GRID * GRID; i > 0; i--)
 		c[i] = c[i - 1];
 	c[0] = 0;
 	return 1;
@@ -3526,7 +3527,7 @@ weights(const pm_polyindex *pi, pm_vec3 x, pm_vec3 n,
 		 * among its cell's. */
 		int nplane = 0, *held = sc->held;
 		if (pgrid) {
-			int cell = (pgrid_cell(r.x, h) * PGRID + pgrid_cell(r.y, h)) * PGRID + pgrid_cell(r.z, h);
+			int cell = (cube_cell(r.x, h) * GRID + cube_cell(r.y, h)) * GRID + cube_cell(r.z, h);
 			for (int k = 0; k < nm; k++)
 				sc->gmark[sc->gm[k]] = 1;
 			for (int t = sc->pgc[cell]; t < sc->pgc[cell + 1]; t++) {

@@ -209,8 +209,9 @@ extern int pm_comp_sheet_nodes;
 /* 1: where fates go by rays, the facets of a sheet smaller than a sample
  * cell (one point each) whose fate depends on the direction take, by the
  * cube's cells (GRID^3 of them), the backward rays of the first such
- * facet in their cell if they face within 10 degrees of it; each keeps its own point for what x' sees of it,
- * and its own area and facing (compensate.c, share_cells()). The rays
+ * facet in their cell if they face within 10 degrees of it; each keeps
+ * its own point for what x' sees of it, and its own area and facing
+ * (compensate.c, share_cells()). The rays
  * then follow the cube's resolution, not the mesh's; the weights change
  * by that. 0 casts each facet's own. For tests and benchmarks, set before
  * any estimate runs. */
